@@ -1,0 +1,62 @@
+//! `gcs check` end to end: counts, JSON Lines, failures that do not stop the batch, exit codes.
+
+use std::path::Path;
+use std::process::Command;
+
+fn gcs(args: &[&str]) -> (i32, String, String) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+#[test]
+fn json_lines_with_counts_and_failures_in_order() {
+    let (code, stdout, _) = gcs(&[
+        "check",
+        "--format",
+        "json",
+        "crates/gcs-model/tests/good",
+        "crates/gcs-model/tests/bad/unknown_id.ron",
+        "no/such/file.ron",
+    ]);
+    assert_eq!(code, 1, "some files failed");
+    let lines: Vec<serde_json::Value> =
+        stdout.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 4);
+    assert_eq!(lines[0]["file"], "crates/gcs-model/tests/good/zoo2d.ron");
+    assert_eq!(lines[0]["model"], "zoo 2d");
+    assert_eq!(lines[0]["entity_dof"], 22);
+    assert_eq!(lines[0]["constraint_doc"], 22);
+    assert_eq!(lines[0]["naive_dof"], 0);
+    assert_eq!(lines[1]["file"], "crates/gcs-model/tests/good/zoo3d.ron");
+    assert_eq!(lines[1]["naive_dof"], -2);
+    assert_eq!(lines[2]["schema"], 1);
+    assert_eq!(
+        lines[2]["error"],
+        "crates/gcs-model/tests/bad/unknown_id.ron:4:48: constraint \"d\": field b: unknown entity id \"r\""
+    );
+    assert!(lines[3]["error"].as_str().unwrap().starts_with("no/such/file.ron: "));
+}
+
+#[test]
+fn text_reports_on_stdout_errors_on_stderr() {
+    let (code, stdout, stderr) =
+        gcs(&["check", "crates/gcs-model/tests/good/zoo2d.ron", "crates/gcs-model/tests/bad"]);
+    assert_eq!(code, 1);
+    assert_eq!(stdout.lines().count(), 1);
+    assert!(stdout.contains("DOF 22 − DOC 22 = 0"), "{stdout}");
+    assert_eq!(stderr.lines().count(), 24, "one line per bad file:\n{stderr}");
+    assert!(stderr.lines().all(|l| l.starts_with("error: crates/gcs-model/tests/bad/")));
+}
+
+#[test]
+fn all_good_is_exit_zero_and_usage_error_is_two() {
+    assert_eq!(gcs(&["check", "crates/gcs-model/tests/good"]).0, 0);
+    assert_eq!(gcs(&["check"]).0, 2);
+    assert_eq!(gcs(&["check", "--format", "xml", "x.ron"]).0, 2);
+    assert_eq!(gcs(&["frobnicate"]).0, 2);
+}

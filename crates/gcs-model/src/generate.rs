@@ -1,0 +1,218 @@
+//! Generated families of systems of growing size, for benchmarks and property tests.
+//!
+//! Every generator is deterministic in its arguments (sizes and seed) and returns a valid
+//! [`System`] whose sketch is generic for its constraints (random integer coordinates), so the
+//! sketch is a witness.
+
+use num_rational::BigRational;
+
+use crate::kinds::{ConstraintKind, Dim};
+use crate::number::int;
+use crate::rng::SplitMix64;
+use crate::system::{System, SystemBuilder};
+
+// The builder only fails on invalid input; the generators produce valid input by
+// construction (unique ids, existing references, correct kinds), so a failure is a bug here.
+fn ok<T>(r: Result<T, crate::ModelError>) -> T {
+    match r {
+        Ok(v) => v,
+        Err(e) => panic!("generator produced an invalid model: {e}"),
+    }
+}
+
+/// A distance value as a CAD user would type it: the Euclidean distance rounded to 4 decimals.
+fn dimension(p: &[i64], q: &[i64]) -> BigRational {
+    let d2: i64 = p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum();
+    let d = (d2 as f64).sqrt();
+    BigRational::new(((d * 10_000.0).round() as i64).into(), 10_000.into())
+}
+
+/// `n` fully constrained CAD rectangles side by side on a grid, each written as a user writes
+/// it: four points, four segments, `Fix` on one corner, `Horizontal` on the bottom and top
+/// sides, `Vertical` on the left and right sides, a width and a height. Each rectangle is an
+/// independent well-constrained component (8 DOF, 8 DOC).
+///
+/// # Example
+/// ```
+/// let s = gcs_model::generate::rectangles(3);
+/// assert_eq!(s.entities().len(), 3 * 8);
+/// assert_eq!(s.dof_sum(), s.doc_sum());
+/// ```
+pub fn rectangles(n: usize) -> System {
+    let mut b = SystemBuilder::new(format!("rectangles-{n}"), Dim::Two);
+    let columns = (n as f64).sqrt().ceil().max(1.0) as i64;
+    for k in 0..n as i64 {
+        let (ox, oy) = ((k % columns) * 20, (k / columns) * 20);
+        let (w, h) = (3 + k % 7, 2 + k % 5);
+        let corners = [[ox, oy], [ox + w, oy], [ox + w, oy + h], [ox, oy + h]];
+        let names = ["a", "b", "c", "d"].map(|s| format!("r{k}{s}"));
+        for (name, c) in names.iter().zip(&corners) {
+            ok(b.point(name, Some(vec![int(c[0]), int(c[1])])));
+        }
+        let sides = ["bottom", "right", "top", "left"].map(|s| format!("r{k}_{s}"));
+        for i in 0..4 {
+            ok(b.segment(&sides[i], &names[i], &names[(i + 1) % 4]));
+        }
+        let c = |s: &str| format!("r{k}_{s}");
+        ok(b.constraint(ConstraintKind::Fix, &c("fix"), &[&names[0]], None));
+        ok(b.constraint(ConstraintKind::Horizontal, &c("hb"), &[&sides[0]], None));
+        ok(b.constraint(ConstraintKind::Horizontal, &c("ht"), &[&sides[2]], None));
+        ok(b.constraint(ConstraintKind::Vertical, &c("vl"), &[&sides[3]], None));
+        ok(b.constraint(ConstraintKind::Vertical, &c("vr"), &[&sides[1]], None));
+        ok(b.constraint(ConstraintKind::Distance, &c("w"), &[&names[0], &names[1]], Some(int(w))));
+        ok(b.constraint(ConstraintKind::Distance, &c("h"), &[&names[0], &names[3]], Some(int(h))));
+    }
+    b.build()
+}
+
+/// The edges of a random 2D Laman graph on `n ≥ 2` vertices built by Henneberg moves from one
+/// edge: a type I move adds a vertex joined to two existing vertices; a type II move (chosen
+/// with probability `type2` when an edge exists) removes an edge `uv` and adds a vertex joined
+/// to `u`, `v` and a third vertex. The result has `2n − 3` edges and is generically minimally
+/// rigid (Laman; Henneberg).
+pub fn laman_edges(n: usize, type2: f64, rng: &mut SplitMix64) -> Vec<(usize, usize)> {
+    let mut edges: Vec<(usize, usize)> = Vec::new();
+    if n < 2 {
+        return edges;
+    }
+    edges.push((0, 1));
+    for v in 2..n {
+        let existing = v as u64;
+        if v >= 3 && rng.unit_f64() < type2 {
+            let k = rng.below(edges.len() as u64) as usize;
+            let (a, b) = edges.swap_remove(k);
+            let mut c = rng.below(existing) as usize;
+            while c == a || c == b {
+                c = rng.below(existing) as usize;
+            }
+            edges.extend([(a, v), (b, v), (c, v)]);
+        } else {
+            let a = rng.below(existing) as usize;
+            let mut b = rng.below(existing) as usize;
+            while b == a {
+                b = rng.below(existing) as usize;
+            }
+            edges.extend([(a, v), (b, v)]);
+        }
+    }
+    edges
+}
+
+/// A bar-and-joint framework: points `p0…` at the given integer coordinates and one
+/// `Distance` per edge (`d0…`, in edge order), in dimension `dim`.
+pub fn framework(name: &str, dim: Dim, coords: &[Vec<i64>], edges: &[(usize, usize)]) -> System {
+    let mut b = SystemBuilder::new(name, dim);
+    for (i, c) in coords.iter().enumerate() {
+        ok(b.point(&format!("p{i}"), Some(c.iter().map(|x| int(*x)).collect())));
+    }
+    for (k, &(u, v)) in edges.iter().enumerate() {
+        let value = dimension(&coords[u], &coords[v]);
+        let (pu, pv) = (format!("p{u}"), format!("p{v}"));
+        ok(b.constraint(ConstraintKind::Distance, &format!("d{k}"), &[&pu, &pv], Some(value)));
+    }
+    b.build()
+}
+
+/// Random integer coordinates in `[-range, range]^d`, pairwise distinct.
+pub fn random_coords(n: usize, dim: Dim, range: i64, rng: &mut SplitMix64) -> Vec<Vec<i64>> {
+    let mut out: Vec<Vec<i64>> = Vec::with_capacity(n);
+    while out.len() < n {
+        let c: Vec<i64> = (0..dim.coords()).map(|_| rng.range(-range, range)).collect();
+        if !out.contains(&c) {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A random generically rigid 2D bar framework on `n` points (a Laman graph by Henneberg
+/// moves) with random integer coordinates: rigid, no redundancy.
+pub fn laman(n: usize, seed: u64) -> System {
+    let mut rng = SplitMix64::new(seed);
+    let edges = laman_edges(n, 0.5, &mut rng);
+    let coords = random_coords(n, Dim::Two, 1000, &mut rng);
+    framework(&format!("laman-{n}-{seed}"), Dim::Two, &coords, &edges)
+}
+
+/// The edges of a random triangulated sphere on `n ≥ 4` vertices: from a tetrahedron, by
+/// stellar subdivision of a face (a vertex joined to its three corners) and edge splits (edge
+/// `ab` with faces `abc`, `abd` replaced by a vertex joined to `a, b, c, d`). A triangulated
+/// sphere has `3n − 6` edges and is generically rigid in 3D (Gluck).
+pub fn sphere_edges(n: usize, rng: &mut SplitMix64) -> Vec<(usize, usize)> {
+    let n = n.max(4);
+    let mut edges = vec![(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+    let mut faces: Vec<[usize; 3]> = vec![[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+    for v in 4..n {
+        if rng.below(2) == 0 {
+            let f = rng.below(faces.len() as u64) as usize;
+            let [a, b, c] = faces.swap_remove(f);
+            faces.extend([[a, b, v], [b, c, v], [a, c, v]]);
+            edges.extend([(a, v), (b, v), (c, v)]);
+        } else {
+            let k = rng.below(edges.len() as u64) as usize;
+            let (a, b) = edges[k];
+            let adjacent: Vec<usize> = (0..faces.len())
+                .filter(|&i| faces[i].contains(&a) && faces[i].contains(&b))
+                .collect();
+            let [f1, f2] = adjacent[..] else {
+                unreachable!("an edge of a triangulated sphere has two faces")
+            };
+            let third = |f: [usize; 3]| f.into_iter().find(|x| *x != a && *x != b).unwrap_or(a);
+            let (c, d) = (third(faces[f1]), third(faces[f2]));
+            let (hi, lo) = (f1.max(f2), f1.min(f2));
+            faces.swap_remove(hi);
+            faces.swap_remove(lo);
+            faces.extend([[a, c, v], [b, c, v], [a, d, v], [b, d, v]]);
+            edges.swap_remove(k);
+            edges.extend([(a, v), (b, v), (c, v), (d, v)]);
+        }
+    }
+    edges
+}
+
+/// A random triangulated sphere in 3D with random integer coordinates: generically rigid,
+/// no redundancy.
+pub fn triangulated_sphere(n: usize, seed: u64) -> System {
+    let mut rng = SplitMix64::new(seed);
+    let edges = sphere_edges(n, &mut rng);
+    let coords = random_coords(n.max(4), Dim::Three, 1000, &mut rng);
+    framework(&format!("sphere-{n}-{seed}"), Dim::Three, &coords, &edges)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_match_the_theorems() {
+        for n in [2, 3, 10, 57] {
+            let s = laman(n, n as u64);
+            assert_eq!(s.constraints().len(), 2 * n - 3);
+            assert_eq!(s.naive_dof(), 3);
+        }
+        for n in [4, 5, 30] {
+            let s = triangulated_sphere(n, 3);
+            assert_eq!(s.constraints().len(), 3 * n - 6);
+            assert_eq!(s.naive_dof(), 6);
+        }
+        let r = rectangles(10);
+        assert_eq!(r.naive_dof(), 0);
+        assert_eq!(r.constraints().len(), 70);
+    }
+
+    #[test]
+    fn laman_edges_are_simple() {
+        let mut rng = SplitMix64::new(9);
+        let mut e = laman_edges(200, 0.5, &mut rng);
+        let n = e.len();
+        for (a, b) in e.iter_mut() {
+            assert_ne!(a, b);
+            if a > b {
+                std::mem::swap(a, b);
+            }
+        }
+        e.sort();
+        e.dedup();
+        assert_eq!(e.len(), n, "no repeated edge");
+    }
+}

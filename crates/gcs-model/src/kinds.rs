@@ -1,0 +1,265 @@
+//! The closed vocabularies of the model: dimensions, entity kinds, constraint kinds, and the
+//! degree-of-freedom (DOF) and degree-of-constraint (DOC) tables of the format
+//! (`docs/format.md` §1).
+
+use std::fmt;
+
+/// The dimension of the space a system lives in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Dim {
+    /// The plane.
+    Two,
+    /// Space.
+    Three,
+}
+
+impl Dim {
+    /// Builds a dimension from the number written in a model file (`2` or `3`).
+    pub fn from_number(n: u64) -> Option<Dim> {
+        match n {
+            2 => Some(Dim::Two),
+            3 => Some(Dim::Three),
+            _ => None,
+        }
+    }
+
+    /// The number of coordinates of a point: 2 or 3.
+    pub fn coords(self) -> usize {
+        match self {
+            Dim::Two => 2,
+            Dim::Three => 3,
+        }
+    }
+
+    /// The dimension of the group of direct displacements (rotations and translations):
+    /// 3 in the plane, 6 in space.
+    pub fn displacements(self) -> usize {
+        match self {
+            Dim::Two => 3,
+            Dim::Three => 6,
+        }
+    }
+}
+
+impl fmt::Display for Dim {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}D", self.coords())
+    }
+}
+
+/// The kind of a geometric entity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum EntityKind {
+    /// A point.
+    Point,
+    /// An infinite line.
+    Line,
+    /// The line through two existing points; it has no degree of freedom of its own.
+    Segment,
+    /// A circle of variable centre and radius (2D).
+    Circle,
+    /// A plane (3D).
+    Plane,
+    /// A sphere of variable centre and radius (3D).
+    Sphere,
+}
+
+impl EntityKind {
+    /// Every entity kind, in the order of the format's table.
+    pub const ALL: [EntityKind; 6] = [
+        EntityKind::Point,
+        EntityKind::Line,
+        EntityKind::Segment,
+        EntityKind::Circle,
+        EntityKind::Plane,
+        EntityKind::Sphere,
+    ];
+
+    /// The variant name used in model files (`Point`, `Line`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            EntityKind::Point => "Point",
+            EntityKind::Line => "Line",
+            EntityKind::Segment => "Segment",
+            EntityKind::Circle => "Circle",
+            EntityKind::Plane => "Plane",
+            EntityKind::Sphere => "Sphere",
+        }
+    }
+
+    /// Whether the kind exists in dimension `dim` (circles are planar, planes and spheres
+    /// spatial).
+    pub fn exists_in(self, dim: Dim) -> bool {
+        match self {
+            EntityKind::Point | EntityKind::Line | EntityKind::Segment => true,
+            EntityKind::Circle => dim == Dim::Two,
+            EntityKind::Plane | EntityKind::Sphere => dim == Dim::Three,
+        }
+    }
+
+    /// Degrees of freedom of one entity of this kind (format §1, table "Entities").
+    ///
+    /// Returns 0 for a kind that does not exist in `dim`.
+    pub fn dof(self, dim: Dim) -> usize {
+        if !self.exists_in(dim) {
+            return 0;
+        }
+        match (self, dim) {
+            (EntityKind::Point, d) => d.coords(),
+            (EntityKind::Line, Dim::Two) => 2,
+            (EntityKind::Line, Dim::Three) => 4,
+            (EntityKind::Segment, _) => 0,
+            (EntityKind::Circle, _) => 3,
+            (EntityKind::Plane, _) => 3,
+            (EntityKind::Sphere, _) => 4,
+        }
+    }
+
+    /// Whether the kind is line-like: a line or a segment. Every constraint that takes a line
+    /// also takes a segment.
+    pub fn is_line_like(self) -> bool {
+        matches!(self, EntityKind::Line | EntityKind::Segment)
+    }
+}
+
+impl fmt::Display for EntityKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            EntityKind::Point => "point",
+            EntityKind::Line => "line",
+            EntityKind::Segment => "segment",
+            EntityKind::Circle => "circle",
+            EntityKind::Plane => "plane",
+            EntityKind::Sphere => "sphere",
+        })
+    }
+}
+
+/// The kind of a constraint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ConstraintKind {
+    /// Two points at the same place.
+    Coincident,
+    /// A distance (point–point, point–line, point–plane, line–line, plane–plane).
+    Distance,
+    /// An angle between lines and planes, in degrees.
+    Angle,
+    /// Parallel lines or planes.
+    Parallel,
+    /// Perpendicular lines or planes.
+    Perpendicular,
+    /// A point on a line, plane, circle or sphere; a line in a plane.
+    Incident,
+    /// Tangency between a line and a circle, two circles, a plane and a sphere, two spheres.
+    Tangent,
+    /// The radius of a circle or sphere.
+    Radius,
+    /// Two segments of equal length.
+    EqualLength,
+    /// A point at the middle of a segment.
+    Midpoint,
+    /// Two points symmetric about a line (2D).
+    Symmetric,
+    /// A horizontal line or segment (2D, absolute).
+    Horizontal,
+    /// A vertical line or segment (2D, absolute).
+    Vertical,
+    /// An entity pinned at its sketch position (absolute).
+    Fix,
+}
+
+impl ConstraintKind {
+    /// Every constraint kind, in the order of the format's table.
+    pub const ALL: [ConstraintKind; 14] = [
+        ConstraintKind::Coincident,
+        ConstraintKind::Distance,
+        ConstraintKind::Angle,
+        ConstraintKind::Parallel,
+        ConstraintKind::Perpendicular,
+        ConstraintKind::Incident,
+        ConstraintKind::Tangent,
+        ConstraintKind::Radius,
+        ConstraintKind::EqualLength,
+        ConstraintKind::Midpoint,
+        ConstraintKind::Symmetric,
+        ConstraintKind::Horizontal,
+        ConstraintKind::Vertical,
+        ConstraintKind::Fix,
+    ];
+
+    /// The variant name used in model files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ConstraintKind::Coincident => "Coincident",
+            ConstraintKind::Distance => "Distance",
+            ConstraintKind::Angle => "Angle",
+            ConstraintKind::Parallel => "Parallel",
+            ConstraintKind::Perpendicular => "Perpendicular",
+            ConstraintKind::Incident => "Incident",
+            ConstraintKind::Tangent => "Tangent",
+            ConstraintKind::Radius => "Radius",
+            ConstraintKind::EqualLength => "EqualLength",
+            ConstraintKind::Midpoint => "Midpoint",
+            ConstraintKind::Symmetric => "Symmetric",
+            ConstraintKind::Horizontal => "Horizontal",
+            ConstraintKind::Vertical => "Vertical",
+            ConstraintKind::Fix => "Fix",
+        }
+    }
+
+    /// Whether the constraint carries a metric value (a dimension in the CAD sense). Metric
+    /// constraints need no special witness: their values are read off it.
+    pub fn is_metric(self) -> bool {
+        matches!(self, ConstraintKind::Distance | ConstraintKind::Angle | ConstraintKind::Radius)
+    }
+
+    /// Whether the constraint is absolute: not invariant under displacements.
+    pub fn is_absolute(self) -> bool {
+        matches!(self, ConstraintKind::Horizontal | ConstraintKind::Vertical | ConstraintKind::Fix)
+    }
+
+    /// The names of the entity fields the constraint takes, in order.
+    pub fn fields(self) -> &'static [&'static str] {
+        match self {
+            ConstraintKind::Radius
+            | ConstraintKind::Horizontal
+            | ConstraintKind::Vertical
+            | ConstraintKind::Fix => &["a"],
+            ConstraintKind::Midpoint => &["point", "segment"],
+            ConstraintKind::Symmetric => &["a", "b", "axis"],
+            _ => &["a", "b"],
+        }
+    }
+}
+
+impl fmt::Display for ConstraintKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entity_dof_table() {
+        use EntityKind::*;
+        let two: Vec<usize> = EntityKind::ALL.iter().map(|k| k.dof(Dim::Two)).collect();
+        let three: Vec<usize> = EntityKind::ALL.iter().map(|k| k.dof(Dim::Three)).collect();
+        assert_eq!(two, [2, 2, 0, 3, 0, 0]);
+        assert_eq!(three, [3, 4, 0, 0, 3, 4]);
+        assert!(Circle.exists_in(Dim::Two) && !Circle.exists_in(Dim::Three));
+        assert!(Plane.exists_in(Dim::Three) && !Plane.exists_in(Dim::Two));
+    }
+
+    #[test]
+    fn names_are_unique() {
+        let mut names: Vec<&str> = ConstraintKind::ALL.iter().map(|k| k.name()).collect();
+        names.extend(EntityKind::ALL.iter().map(|k| k.name()));
+        let n = names.len();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), n);
+    }
+}

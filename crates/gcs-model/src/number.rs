@@ -1,0 +1,238 @@
+//! Exact numbers: decimals read as the rationals they denote, rationals written back exactly.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+/// Parses a decimal numeral (`-12`, `3.1623`, `1.5e-3`, `+7`, `.5`) or a fraction (`-2/3`,
+/// `1.5/7`) as the exact rational it denotes. Surrounding whitespace is allowed.
+///
+/// Returns `None` for anything else (including `inf` and `NaN`).
+///
+/// # Example
+/// ```
+/// use gcs_model::number::parse_exact;
+/// use num_rational::BigRational;
+/// assert_eq!(parse_exact("0.1"), Some(BigRational::new(1.into(), 10.into())));
+/// assert_eq!(parse_exact("-2/6"), Some(BigRational::new((-1).into(), 3.into())));
+/// ```
+pub fn parse_exact(text: &str) -> Option<BigRational> {
+    let text = text.trim();
+    if let Some((num, den)) = text.split_once('/') {
+        let num = parse_decimal(num.trim())?;
+        let den = parse_decimal(den.trim())?;
+        if den.is_zero() {
+            return None;
+        }
+        return Some(num / den);
+    }
+    parse_decimal(text)
+}
+
+fn parse_decimal(text: &str) -> Option<BigRational> {
+    let (negative, body) = match text.as_bytes().first()? {
+        b'-' => (true, &text[1..]),
+        b'+' => (false, &text[1..]),
+        _ => (false, text),
+    };
+    let (mantissa, exponent) = match body.find(['e', 'E']) {
+        Some(i) => (&body[..i], body[i + 1..].parse::<i64>().ok()?),
+        None => (body, 0),
+    };
+    let (int_part, frac_part) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    if int_part.is_empty() && frac_part.is_empty() {
+        return None;
+    }
+    let digits_ok = |s: &str| s.bytes().all(|b| b.is_ascii_digit() || b == b'_');
+    if !digits_ok(int_part) || !digits_ok(frac_part) {
+        return None;
+    }
+    let digits: String = int_part.chars().chain(frac_part.chars()).filter(|c| *c != '_').collect();
+    if digits.is_empty() {
+        return None;
+    }
+    let mantissa: BigInt = digits.parse().ok()?;
+    let frac_len = frac_part.chars().filter(|c| *c != '_').count() as i64;
+    let scale = exponent.checked_sub(frac_len)?;
+    // Refuse absurd exponents instead of allocating huge powers of ten.
+    if scale.unsigned_abs() > 10_000 {
+        return None;
+    }
+    let ten = BigInt::from(10u32);
+    let power = num_traits::pow(ten, scale.unsigned_abs() as usize);
+    let mut value = if scale >= 0 {
+        BigRational::from_integer(mantissa * power)
+    } else {
+        BigRational::new(mantissa, power)
+    };
+    if negative {
+        value = -value;
+    }
+    Some(value)
+}
+
+/// The exact rational a finite `f64` read from a model file stands for: the shortest decimal
+/// that round-trips to it (so `3.1623` read as a double gives exactly 31623/10000). Decimals
+/// written with at most 15 significant digits are therefore recovered exactly.
+///
+/// Returns `None` for infinities and NaN.
+pub fn rational_from_f64_decimal(x: f64) -> Option<BigRational> {
+    if !x.is_finite() {
+        return None;
+    }
+    // `Display` for f64 prints the shortest representation that round-trips, never in
+    // exponent notation.
+    parse_decimal(&format!("{x}"))
+}
+
+/// Writes a rational the way a model file holds it: an integer, a terminating decimal, or (when
+/// the decimal expansion does not terminate) a quoted fraction `"p/q"`, which the reader
+/// accepts too.
+///
+/// # Example
+/// ```
+/// use gcs_model::number::{format_exact, parse_exact};
+/// for s in ["7", "-0.125", "\"1/3\""] {
+///     let q = parse_exact(s.trim_matches('"')).unwrap();
+///     assert_eq!(format_exact(&q), s);
+/// }
+/// ```
+pub fn format_exact(q: &BigRational) -> String {
+    if q.is_integer() {
+        return q.numer().to_string();
+    }
+    let den = q.denom().clone();
+    let (mut twos, mut fives) = (0u32, 0u32);
+    let mut rest = den.clone();
+    let two = BigInt::from(2u32);
+    let five = BigInt::from(5u32);
+    while rest.is_even() {
+        rest /= &two;
+        twos += 1;
+    }
+    while (&rest % &five).is_zero() {
+        rest /= &five;
+        fives += 1;
+    }
+    if !rest.is_one() {
+        return format!("\"{}/{}\"", q.numer(), q.denom());
+    }
+    let places = twos.max(fives);
+    let scale = num_traits::pow(BigInt::from(10u32), places as usize);
+    let scaled = (q.numer() * &scale) / q.denom();
+    let negative = scaled.is_negative();
+    let digits = scaled.abs().to_string();
+    let places = places as usize;
+    let padded = if digits.len() <= places {
+        format!("{}{}", "0".repeat(places + 1 - digits.len()), digits)
+    } else {
+        digits
+    };
+    let (int, frac) = padded.split_at(padded.len() - places);
+    format!("{}{}.{}", if negative { "-" } else { "" }, int, frac)
+}
+
+/// A number as written in a model file, before validation: exact when it could be read
+/// exactly, or the non-finite double the parser produced.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Num {
+    Exact(BigRational),
+    NonFinite,
+    /// A string that is not a number.
+    Invalid(String),
+}
+
+impl<'de> serde::Deserialize<'de> for Num {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = Num;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a number (integer, decimal, or a string \"p/q\")")
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<Num, E> {
+                Ok(Num::Exact(BigRational::from_integer(v.into())))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<Num, E> {
+                Ok(Num::Exact(BigRational::from_integer(v.into())))
+            }
+            fn visit_i128<E>(self, v: i128) -> Result<Num, E> {
+                Ok(Num::Exact(BigRational::from_integer(v.into())))
+            }
+            fn visit_u128<E>(self, v: u128) -> Result<Num, E> {
+                Ok(Num::Exact(BigRational::from_integer(v.into())))
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<Num, E> {
+                Ok(rational_from_f64_decimal(v).map_or(Num::NonFinite, Num::Exact))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<Num, E> {
+                Ok(parse_exact(v).map_or_else(|| Num::Invalid(v.to_owned()), Num::Exact))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// `BigRational` from a small integer ratio; a convenience for tests and generators.
+///
+/// # Panics
+/// Panics when `den` is zero (a programming error, never user input).
+pub fn ratio(num: i64, den: i64) -> BigRational {
+    BigRational::new(num.into(), den.into())
+}
+
+/// `BigRational` from an integer.
+pub fn int(v: i64) -> BigRational {
+    BigRational::from_integer(v.into())
+}
+
+/// Whether a rational is zero, a helper for callers that do not import `num_traits`.
+pub fn is_zero(q: &BigRational) -> bool {
+    q.is_zero()
+}
+
+/// One, as a rational.
+pub fn one() -> BigRational {
+    BigRational::one()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimals_are_exact() {
+        assert_eq!(parse_exact("3.1623"), Some(ratio(31623, 10000)));
+        assert_eq!(parse_exact("-0.5"), Some(ratio(-1, 2)));
+        assert_eq!(parse_exact("1e3"), Some(int(1000)));
+        assert_eq!(parse_exact("1.5E-2"), Some(ratio(3, 200)));
+        assert_eq!(parse_exact(".25"), Some(ratio(1, 4)));
+        assert_eq!(parse_exact("7."), Some(int(7)));
+        assert_eq!(parse_exact("1_000"), Some(int(1000)));
+        assert_eq!(parse_exact(" 4/6 "), Some(ratio(2, 3)));
+        for bad in ["", "-", ".", "e3", "1/0", "inf", "NaN", "1.2.3", "abc", "1e99999"] {
+            assert_eq!(parse_exact(bad), None, "{bad}");
+        }
+    }
+
+    #[test]
+    fn doubles_map_back_to_their_decimal() {
+        for (x, q) in [(0.1, ratio(1, 10)), (3.1623, ratio(31623, 10000)), (-2.0, int(-2))] {
+            assert_eq!(rational_from_f64_decimal(x), Some(q));
+        }
+        assert_eq!(rational_from_f64_decimal(f64::INFINITY), None);
+        assert_eq!(rational_from_f64_decimal(f64::NAN), None);
+    }
+
+    #[test]
+    fn formatting_round_trips() {
+        for q in [int(0), int(-3), ratio(1, 8), ratio(-7, 20), ratio(1, 3), ratio(-22, 7)] {
+            let s = format_exact(&q);
+            assert_eq!(parse_exact(s.trim_matches('"')), Some(q.clone()), "{s}");
+        }
+        assert_eq!(format_exact(&ratio(-7, 20)), "-0.35");
+        assert_eq!(format_exact(&ratio(1, 3)), "\"1/3\"");
+        assert_eq!(format_exact(&ratio(1, 1000)), "0.001");
+    }
+}

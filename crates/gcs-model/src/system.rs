@@ -1,0 +1,753 @@
+//! The validated system: entities and constraints with ids resolved to indices, kinds checked
+//! against the constraint table, degrees of freedom and of constraint known.
+
+use std::collections::HashMap;
+use std::fmt;
+
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
+
+use crate::error::{ModelError, ModelErrorKind, Position};
+use crate::kinds::{ConstraintKind, Dim, EntityKind};
+
+/// Index of an entity in [`System::entities`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct EntityIdx(pub u32);
+
+/// Index of a constraint in [`System::constraints`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ConstraintIdx(pub u32);
+
+impl EntityIdx {
+    /// The index as a `usize`.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl ConstraintIdx {
+    /// The index as a `usize`.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A sketch position: one exact rational per coordinate.
+pub type Coords = Vec<BigRational>;
+
+/// An entity's kind with its sketch data (every sketch field is optional) or, for a segment,
+/// its two points.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// A point.
+    Point {
+        /// Sketch position.
+        at: Option<Coords>,
+    },
+    /// An infinite line, sketched by two distinct points on it.
+    Line {
+        /// Two distinct points on the line.
+        at: Option<[Coords; 2]>,
+    },
+    /// The line through two point entities.
+    Segment {
+        /// First point.
+        from: EntityIdx,
+        /// Second point.
+        to: EntityIdx,
+    },
+    /// A circle (2D).
+    Circle {
+        /// Sketch centre.
+        center: Option<Coords>,
+        /// Sketch radius.
+        radius: Option<BigRational>,
+    },
+    /// A plane (3D), sketched by a point on it and a normal.
+    Plane {
+        /// `[point, normal]`.
+        at: Option<[Coords; 2]>,
+    },
+    /// A sphere (3D).
+    Sphere {
+        /// Sketch centre.
+        center: Option<Coords>,
+        /// Sketch radius.
+        radius: Option<BigRational>,
+    },
+}
+
+impl Geometry {
+    /// The entity kind.
+    pub fn kind(&self) -> EntityKind {
+        match self {
+            Geometry::Point { .. } => EntityKind::Point,
+            Geometry::Line { .. } => EntityKind::Line,
+            Geometry::Segment { .. } => EntityKind::Segment,
+            Geometry::Circle { .. } => EntityKind::Circle,
+            Geometry::Plane { .. } => EntityKind::Plane,
+            Geometry::Sphere { .. } => EntityKind::Sphere,
+        }
+    }
+}
+
+/// A geometric entity of a system.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Entity {
+    /// The id from the model file.
+    pub id: String,
+    /// Kind and sketch.
+    pub geometry: Geometry,
+    /// Where the entity is written, when it was read from a file.
+    pub position: Option<Position>,
+}
+
+impl Entity {
+    /// The entity kind.
+    pub fn kind(&self) -> EntityKind {
+        self.geometry.kind()
+    }
+
+    /// Whether every sketch field that defines its placement is given. A segment has a
+    /// position when both its points have one; the caller checks that through the system
+    /// ([`System::has_position`]).
+    fn has_own_position(&self) -> bool {
+        match &self.geometry {
+            Geometry::Point { at } => at.is_some(),
+            Geometry::Line { at } | Geometry::Plane { at } => at.is_some(),
+            Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
+                center.is_some() && radius.is_some()
+            }
+            Geometry::Segment { .. } => false,
+        }
+    }
+}
+
+/// The entities a constraint binds, with their roles resolved from the kinds (argument order
+/// in the file does not matter where the roles differ: `Distance(a: line, b: point)` is a
+/// point–line distance). "Line" roles take lines and segments alike.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shape {
+    /// Two points.
+    PointPoint(EntityIdx, EntityIdx),
+    /// A point and a line or segment.
+    PointLine {
+        /// The point.
+        point: EntityIdx,
+        /// The line or segment.
+        line: EntityIdx,
+    },
+    /// A point and a plane.
+    PointPlane {
+        /// The point.
+        point: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// A point and a circle.
+    PointCircle {
+        /// The point.
+        point: EntityIdx,
+        /// The circle.
+        circle: EntityIdx,
+    },
+    /// A point and a sphere.
+    PointSphere {
+        /// The point.
+        point: EntityIdx,
+        /// The sphere.
+        sphere: EntityIdx,
+    },
+    /// Two lines or segments.
+    LineLine(EntityIdx, EntityIdx),
+    /// Two planes.
+    PlanePlane(EntityIdx, EntityIdx),
+    /// A line or segment and a plane.
+    LinePlane {
+        /// The line or segment.
+        line: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// A line or segment and a circle.
+    LineCircle {
+        /// The line or segment.
+        line: EntityIdx,
+        /// The circle.
+        circle: EntityIdx,
+    },
+    /// Two circles.
+    CircleCircle(EntityIdx, EntityIdx),
+    /// A plane and a sphere.
+    PlaneSphere {
+        /// The plane.
+        plane: EntityIdx,
+        /// The sphere.
+        sphere: EntityIdx,
+    },
+    /// Two spheres.
+    SphereSphere(EntityIdx, EntityIdx),
+    /// One circle or sphere (`Radius`).
+    Round(EntityIdx),
+    /// Two segments (`EqualLength`).
+    SegmentSegment(EntityIdx, EntityIdx),
+    /// A point and a segment (`Midpoint`).
+    PointSegment {
+        /// The point.
+        point: EntityIdx,
+        /// The segment.
+        segment: EntityIdx,
+    },
+    /// Two points and a line or segment (`Symmetric`).
+    Symmetric {
+        /// First point.
+        a: EntityIdx,
+        /// Second point.
+        b: EntityIdx,
+        /// The axis.
+        axis: EntityIdx,
+    },
+    /// One line or segment (`Horizontal`, `Vertical`).
+    Line(EntityIdx),
+    /// Any one entity (`Fix`).
+    Single(EntityIdx),
+}
+
+impl Shape {
+    /// The entities bound, in role order.
+    pub fn entities(&self) -> Vec<EntityIdx> {
+        match *self {
+            Shape::PointPoint(a, b)
+            | Shape::LineLine(a, b)
+            | Shape::PlanePlane(a, b)
+            | Shape::CircleCircle(a, b)
+            | Shape::SphereSphere(a, b)
+            | Shape::SegmentSegment(a, b) => vec![a, b],
+            Shape::PointLine { point, line: other }
+            | Shape::PointPlane { point, plane: other }
+            | Shape::PointCircle { point, circle: other }
+            | Shape::PointSphere { point, sphere: other }
+            | Shape::PointSegment { point, segment: other } => vec![point, other],
+            Shape::LinePlane { line, plane } => vec![line, plane],
+            Shape::LineCircle { line, circle } => vec![line, circle],
+            Shape::PlaneSphere { plane, sphere } => vec![plane, sphere],
+            Shape::Symmetric { a, b, axis } => vec![a, b, axis],
+            Shape::Round(e) | Shape::Line(e) | Shape::Single(e) => vec![e],
+        }
+    }
+}
+
+/// A constraint of a system.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Constraint {
+    /// The id from the model file.
+    pub id: String,
+    /// The kind.
+    pub kind: ConstraintKind,
+    /// The entities in the order of the file's fields (`a`, `b`, `axis`; `point`, `segment`).
+    pub args: Vec<EntityIdx>,
+    /// The entities with their roles resolved.
+    pub shape: Shape,
+    /// The metric value (a length in model units or an angle in degrees), when written.
+    pub value: Option<BigRational>,
+    /// Degrees of freedom it removes in general (format §1, table "Constraints").
+    pub doc: usize,
+    /// Where the constraint is written, when it was read from a file.
+    pub position: Option<Position>,
+}
+
+/// Either kind of item an id can name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Item {
+    /// An entity.
+    Entity(EntityIdx),
+    /// A constraint.
+    Constraint(ConstraintIdx),
+}
+
+/// A validated geometric constraint system.
+///
+/// Built by the RON reader ([`System::from_ron_str`]) or by a [`SystemBuilder`]; both run the
+/// same checks, so every `System` satisfies: ids are unique and non-empty, every reference
+/// names an entity, every entity kind exists in the dimension, every sketch field has the
+/// right number of coordinates and is not degenerate, every constraint applies to the kinds
+/// it binds, and every `Fix` has a position to pin.
+#[derive(Clone, Debug, PartialEq)]
+pub struct System {
+    name: String,
+    dim: Dim,
+    entities: Vec<Entity>,
+    constraints: Vec<Constraint>,
+    ids: HashMap<String, Item>,
+}
+
+impl System {
+    /// The model's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The dimension.
+    pub fn dim(&self) -> Dim {
+        self.dim
+    }
+
+    /// The entities, in file order.
+    pub fn entities(&self) -> &[Entity] {
+        &self.entities
+    }
+
+    /// The constraints, in file order.
+    pub fn constraints(&self) -> &[Constraint] {
+        &self.constraints
+    }
+
+    /// One entity.
+    ///
+    /// # Panics
+    /// When the index is not from this system.
+    pub fn entity(&self, idx: EntityIdx) -> &Entity {
+        &self.entities[idx.index()]
+    }
+
+    /// One constraint.
+    ///
+    /// # Panics
+    /// When the index is not from this system.
+    pub fn constraint(&self, idx: ConstraintIdx) -> &Constraint {
+        &self.constraints[idx.index()]
+    }
+
+    /// What an id names.
+    pub fn lookup(&self, id: &str) -> Option<Item> {
+        self.ids.get(id).copied()
+    }
+
+    /// The entity an id names.
+    pub fn entity_by_id(&self, id: &str) -> Option<EntityIdx> {
+        match self.lookup(id) {
+            Some(Item::Entity(e)) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The constraint an id names.
+    pub fn constraint_by_id(&self, id: &str) -> Option<ConstraintIdx> {
+        match self.lookup(id) {
+            Some(Item::Constraint(c)) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// The two points of a segment, `None` for any other kind.
+    pub fn segment_points(&self, idx: EntityIdx) -> Option<(EntityIdx, EntityIdx)> {
+        match self.entity(idx).geometry {
+            Geometry::Segment { from, to } => Some((from, to)),
+            _ => None,
+        }
+    }
+
+    /// Degrees of freedom of one entity (0 for a segment).
+    pub fn entity_dof(&self, idx: EntityIdx) -> usize {
+        self.entity(idx).kind().dof(self.dim)
+    }
+
+    /// Sum of the entities' degrees of freedom.
+    pub fn dof_sum(&self) -> usize {
+        self.entities.iter().map(|e| e.kind().dof(self.dim)).sum()
+    }
+
+    /// Sum of the constraints' degrees of constraint.
+    pub fn doc_sum(&self) -> usize {
+        self.constraints.iter().map(|c| c.doc).sum()
+    }
+
+    /// The naive count `Σ DOF − Σ DOC`, which ignores both redundancy and the displacements.
+    pub fn naive_dof(&self) -> i64 {
+        self.dof_sum() as i64 - self.doc_sum() as i64
+    }
+
+    /// Whether an entity has a complete sketch position (a segment: both its points).
+    pub fn has_position(&self, idx: EntityIdx) -> bool {
+        match self.entity(idx).geometry {
+            Geometry::Segment { from, to } => {
+                self.entity(from).has_own_position() && self.entity(to).has_own_position()
+            }
+            _ => self.entity(idx).has_own_position(),
+        }
+    }
+
+    /// Indices of all entities.
+    pub fn entity_indices(&self) -> impl Iterator<Item = EntityIdx> + '_ {
+        (0..self.entities.len() as u32).map(EntityIdx)
+    }
+
+    /// Indices of all constraints.
+    pub fn constraint_indices(&self) -> impl Iterator<Item = ConstraintIdx> + '_ {
+        (0..self.constraints.len() as u32).map(ConstraintIdx)
+    }
+
+    /// The entities that carry degrees of freedom of their own: every entity but segments.
+    /// Constraints on a segment act on its two points.
+    pub fn base_entities(&self, idx: EntityIdx) -> Vec<EntityIdx> {
+        match self.segment_points(idx) {
+            Some((a, b)) => vec![a, b],
+            None => vec![idx],
+        }
+    }
+
+    /// The entities with degrees of freedom that a constraint acts on (segments replaced by
+    /// their points), without repetition, in first-use order.
+    pub fn constraint_base_entities(&self, c: ConstraintIdx) -> Vec<EntityIdx> {
+        let mut out = Vec::new();
+        for e in self.constraint(c).shape.entities() {
+            for b in self.base_entities(e) {
+                if !out.contains(&b) {
+                    out.push(b);
+                }
+            }
+        }
+        out
+    }
+
+    pub(crate) fn set_position(
+        &mut self,
+        entities: &[Option<Position>],
+        constraints: &[Option<Position>],
+    ) {
+        for (e, p) in self.entities.iter_mut().zip(entities) {
+            e.position = *p;
+        }
+        for (c, p) in self.constraints.iter_mut().zip(constraints) {
+            c.position = *p;
+        }
+    }
+}
+
+impl fmt::Display for System {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} ({}, {} entities, {} constraints)",
+            self.name,
+            self.dim,
+            self.entities.len(),
+            self.constraints.len()
+        )
+    }
+}
+
+/// Builds a [`System`] item by item, with the same checks as the RON reader.
+///
+/// # Example
+/// ```
+/// use gcs_model::{ConstraintKind, Dim, SystemBuilder, number::int};
+///
+/// let mut b = SystemBuilder::new("segment", Dim::Two);
+/// b.point("p", Some(vec![int(0), int(0)])).unwrap();
+/// b.point("q", Some(vec![int(3), int(4)])).unwrap();
+/// b.constraint(ConstraintKind::Distance, "d", &["p", "q"], Some(int(5))).unwrap();
+/// let system = b.build();
+/// assert_eq!(system.dof_sum(), 4);
+/// assert_eq!(system.doc_sum(), 1);
+/// ```
+#[derive(Clone, Debug)]
+pub struct SystemBuilder {
+    system: System,
+}
+
+impl SystemBuilder {
+    /// An empty system.
+    pub fn new(name: impl Into<String>, dim: Dim) -> SystemBuilder {
+        SystemBuilder {
+            system: System {
+                name: name.into(),
+                dim,
+                entities: Vec::new(),
+                constraints: Vec::new(),
+                ids: HashMap::new(),
+            },
+        }
+    }
+
+    /// The system as built so far.
+    pub fn system(&self) -> &System {
+        &self.system
+    }
+
+    /// Finishes the system.
+    pub fn build(self) -> System {
+        self.system
+    }
+
+    fn claim_id(&self, id: &str) -> Result<(), ModelError> {
+        if id.is_empty() {
+            return Err(ModelError::new(ModelErrorKind::EmptyId));
+        }
+        if self.system.ids.contains_key(id) {
+            return Err(ModelError::new(ModelErrorKind::DuplicateId { id: id.to_owned() }));
+        }
+        Ok(())
+    }
+
+    fn check_coords(&self, id: &str, field: &'static str, c: &Coords) -> Result<(), ModelError> {
+        let expected = self.system.dim.coords();
+        if c.len() != expected {
+            return Err(ModelError::new(ModelErrorKind::WrongCoordinateCount {
+                id: id.to_owned(),
+                field,
+                expected,
+                found: c.len(),
+                dim: self.system.dim,
+            }));
+        }
+        Ok(())
+    }
+
+    fn check_radius(&self, id: &str, r: &Option<BigRational>) -> Result<(), ModelError> {
+        match r {
+            Some(r) if r.is_negative() => Err(ModelError::new(ModelErrorKind::Negative {
+                item: "entity",
+                owner: id.to_owned(),
+                field: "radius",
+                value: crate::number::format_exact(r),
+            })),
+            Some(r) if r.is_zero() => Err(ModelError::new(ModelErrorKind::Degenerate {
+                id: id.to_owned(),
+                field: Some("radius"),
+                what: "radius 0: a circle or sphere of radius 0 is a point; use a Point".into(),
+            })),
+            _ => Ok(()),
+        }
+    }
+
+    fn push_entity(&mut self, id: &str, geometry: Geometry) -> Result<EntityIdx, ModelError> {
+        self.claim_id(id)?;
+        let kind = geometry.kind();
+        if !kind.exists_in(self.system.dim) {
+            return Err(ModelError::new(ModelErrorKind::KindNotInDim {
+                id: id.to_owned(),
+                kind,
+                dim: self.system.dim,
+            }));
+        }
+        let idx = EntityIdx(self.system.entities.len() as u32);
+        self.system.entities.push(Entity { id: id.to_owned(), geometry, position: None });
+        self.system.ids.insert(id.to_owned(), Item::Entity(idx));
+        Ok(idx)
+    }
+
+    /// Adds a point.
+    pub fn point(&mut self, id: &str, at: Option<Coords>) -> Result<EntityIdx, ModelError> {
+        if let Some(at) = &at {
+            self.check_coords(id, "at", at)?;
+        }
+        self.push_entity(id, Geometry::Point { at })
+    }
+
+    /// Adds an infinite line, sketched by two distinct points.
+    pub fn line(&mut self, id: &str, at: Option<[Coords; 2]>) -> Result<EntityIdx, ModelError> {
+        if let Some([p, q]) = &at {
+            self.check_coords(id, "at", p)?;
+            self.check_coords(id, "at", q)?;
+            if p == q {
+                return Err(ModelError::new(ModelErrorKind::Degenerate {
+                    id: id.to_owned(),
+                    field: Some("at"),
+                    what: "the two points of the line coincide".into(),
+                }));
+            }
+        }
+        self.push_entity(id, Geometry::Line { at })
+    }
+
+    /// Adds a segment between two existing points.
+    pub fn segment(&mut self, id: &str, from: &str, to: &str) -> Result<EntityIdx, ModelError> {
+        let f = self.resolve("entity", id, "from", from)?;
+        let t = self.resolve("entity", id, "to", to)?;
+        for ((field, e), name) in [("from", f), ("to", t)].into_iter().zip([from, to]) {
+            let found = self.system.entity(e).kind();
+            if found != EntityKind::Point {
+                return Err(ModelError::new(ModelErrorKind::SegmentEndpoint {
+                    id: id.to_owned(),
+                    field,
+                    entity: name.to_owned(),
+                    found,
+                }));
+            }
+        }
+        if f == t {
+            return Err(ModelError::new(ModelErrorKind::Degenerate {
+                id: id.to_owned(),
+                field: Some("to"),
+                what: format!("segment from \"{from}\" to itself"),
+            }));
+        }
+        if let (Geometry::Point { at: Some(p) }, Geometry::Point { at: Some(q) }) =
+            (&self.system.entity(f).geometry, &self.system.entity(t).geometry)
+            && p == q
+        {
+            return Err(ModelError::new(ModelErrorKind::Degenerate {
+                id: id.to_owned(),
+                field: None,
+                what: format!("its points \"{from}\" and \"{to}\" coincide in the sketch"),
+            }));
+        }
+        self.push_entity(id, Geometry::Segment { from: f, to: t })
+    }
+
+    /// Adds a circle (2D).
+    pub fn circle(
+        &mut self,
+        id: &str,
+        center: Option<Coords>,
+        radius: Option<BigRational>,
+    ) -> Result<EntityIdx, ModelError> {
+        if let Some(c) = &center {
+            self.check_coords(id, "center", c)?;
+        }
+        self.check_radius(id, &radius)?;
+        self.push_entity(id, Geometry::Circle { center, radius })
+    }
+
+    /// Adds a plane (3D), sketched by a point on it and a normal.
+    pub fn plane(&mut self, id: &str, at: Option<[Coords; 2]>) -> Result<EntityIdx, ModelError> {
+        if let Some([p, n]) = &at {
+            self.check_coords(id, "at", p)?;
+            self.check_coords(id, "at", n)?;
+            if n.iter().all(Zero::is_zero) {
+                return Err(ModelError::new(ModelErrorKind::Degenerate {
+                    id: id.to_owned(),
+                    field: Some("at"),
+                    what: "the normal of the plane is zero".into(),
+                }));
+            }
+        }
+        self.push_entity(id, Geometry::Plane { at })
+    }
+
+    /// Adds a sphere (3D).
+    pub fn sphere(
+        &mut self,
+        id: &str,
+        center: Option<Coords>,
+        radius: Option<BigRational>,
+    ) -> Result<EntityIdx, ModelError> {
+        if let Some(c) = &center {
+            self.check_coords(id, "center", c)?;
+        }
+        self.check_radius(id, &radius)?;
+        self.push_entity(id, Geometry::Sphere { center, radius })
+    }
+
+    fn resolve(
+        &self,
+        item: &'static str,
+        owner: &str,
+        field: &'static str,
+        id: &str,
+    ) -> Result<EntityIdx, ModelError> {
+        match self.system.ids.get(id) {
+            Some(Item::Entity(e)) => Ok(*e),
+            Some(Item::Constraint(_)) => Err(ModelError::new(ModelErrorKind::NotAnEntity {
+                item,
+                owner: owner.to_owned(),
+                field,
+                id: id.to_owned(),
+            })),
+            None => Err(ModelError::new(ModelErrorKind::UnknownId {
+                item,
+                owner: owner.to_owned(),
+                field,
+                id: id.to_owned(),
+            })),
+        }
+    }
+
+    /// Adds a constraint. `args` are the entity ids in the order of the kind's fields
+    /// ([`ConstraintKind::fields`]): `a`, `b` (and `axis` for `Symmetric`), or `point`,
+    /// `segment` for `Midpoint`.
+    pub fn constraint(
+        &mut self,
+        kind: ConstraintKind,
+        id: &str,
+        args: &[&str],
+        value: Option<BigRational>,
+    ) -> Result<ConstraintIdx, ModelError> {
+        self.claim_id(id)?;
+        let fields = kind.fields();
+        if args.len() != fields.len() {
+            return Err(ModelError::new(ModelErrorKind::KindMismatch {
+                id: id.to_owned(),
+                kind,
+                found: format!("{} entities", args.len()),
+                expected: format!("{} entities ({})", fields.len(), fields.join(", ")),
+                dim: self.system.dim,
+            }));
+        }
+        let mut resolved = Vec::with_capacity(args.len());
+        for (field, arg) in fields.iter().zip(args) {
+            resolved.push(self.resolve("constraint", id, field, arg)?);
+        }
+        for i in 0..resolved.len() {
+            for j in i + 1..resolved.len() {
+                if resolved[i] == resolved[j] {
+                    return Err(ModelError::new(ModelErrorKind::RepeatedEntity {
+                        id: id.to_owned(),
+                        entity: args[i].to_string(),
+                        first: fields[i],
+                        second: fields[j],
+                    }));
+                }
+            }
+        }
+        if let Some(v) = &value
+            && matches!(kind, ConstraintKind::Distance | ConstraintKind::Radius)
+            && v.is_negative()
+        {
+            return Err(ModelError::new(ModelErrorKind::Negative {
+                item: "constraint",
+                owner: id.to_owned(),
+                field: "value",
+                value: crate::number::format_exact(v),
+            }));
+        }
+        let kinds: Vec<EntityKind> =
+            resolved.iter().map(|e| self.system.entity(*e).kind()).collect();
+        let (shape, doc) = crate::signature::resolve(self.system.dim, kind, &resolved, &kinds)
+            .map_err(|expected| {
+                let found = kinds.iter().map(|k| k.to_string()).collect::<Vec<_>>().join("–");
+                ModelError::new(ModelErrorKind::KindMismatch {
+                    id: id.to_owned(),
+                    kind,
+                    found,
+                    expected: expected.to_owned(),
+                    dim: self.system.dim,
+                })
+            })?;
+        let doc = match shape {
+            Shape::Single(e) => {
+                if !self.system.has_position(e) {
+                    return Err(ModelError::new(ModelErrorKind::FixWithoutPosition {
+                        id: id.to_owned(),
+                        entity: args[0].to_string(),
+                    }));
+                }
+                self.system.base_entities(e).iter().map(|b| self.system.entity_dof(*b)).sum()
+            }
+            _ => doc,
+        };
+        let idx = ConstraintIdx(self.system.constraints.len() as u32);
+        self.system.constraints.push(Constraint {
+            id: id.to_owned(),
+            kind,
+            args: resolved,
+            shape,
+            value,
+            doc,
+            position: None,
+        });
+        self.system.ids.insert(id.to_owned(), Item::Constraint(idx));
+        Ok(idx)
+    }
+}
