@@ -1,2 +1,101 @@
-//! Linear algebra over a field (witness paper §3.1, §6): this crate will hold the `Field` trait
-//! and its backends, sparse incremental echelon forms, kernels and the certified exact rank.
+//! Linear algebra over a field for the witness method: exact rank, redundant rows and their
+//! combinations, kernels, pivot exchange. Knows nothing about geometry.
+//!
+//! # What it does
+//!
+//! - [`Field`] is the scalar trait, with backends [`BigRational`] (`num`), `rug::Rational`
+//!   (GMP, cargo feature `rug`), [`ModP`] (integers modulo the Mersenne prime 2^61 − 1),
+//!   [`ModPrime`] (any prime below 2^64) and `f64`. The trait is algebra only: its
+//!   [`Field::is_zero`] is exact, and the float tolerance is an explicit
+//!   [`EchelonOptions::tolerance`].
+//! - [`Echelon`] is the incremental reduced row echelon form of the witness paper (Michelucci,
+//!   Foufou, Lamarque, Schreck, *Geometric constraints solving: some tracks*, 2006), §3.1:
+//!   Jacobian rows are inserted constraint by constraint, each [`Insertion`] says whether the
+//!   row is independent (new pivot) or dependent, and a dependent row comes with the combination
+//!   of earlier rows that produces it (its support is the fundamental circuit, the constraints
+//!   it is redundant with). [`Echelon::make_free`] is the pivot exchange that anchors a
+//!   reference (§4), [`Echelon::kernel_basis`] gives the infinitesimal motions.
+//! - [`analyse_rows_exact`] is the fast exact path asked for by §6 ("the rank of rational
+//!   vectors is computable"): elimination modulo a 61-bit prime, certified over ℚ (pivots prove
+//!   the lower bound, dependencies lifted by rational reconstruction and checked exactly prove
+//!   the upper bound), falling back to multi-modular lifting and then to rational elimination;
+//!   the [`Proof`] says which.
+//! - [`float_rank_qr`] is the batch numerical rank with faer's column-pivoted QR, the
+//!   "epsilon-heuristic" of §6 for witnesses that are only known approximately.
+//!
+//! # Example: the kite of the witness paper (fig. 4, table 1)
+//!
+//! ```
+//! use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, Insertion, SparseRow};
+//!
+//! // Rows of dist(pi, pj) at p1=(2,7), p2=(5,6), p3=(1,1), p4=(6,3);
+//! // columns x1 y1 x2 y2 x3 y3 x4 y4.
+//! let p = [(2, 7), (5, 6), (1, 1), (6, 3)];
+//! let dist = |i: usize, j: usize| {
+//!     let (dx, dy) = (p[i].0 - p[j].0, p[i].1 - p[j].1);
+//!     SparseRow::from_entries(vec![
+//!         (2 * i, BigRational::from_i64(dx)),
+//!         (2 * i + 1, BigRational::from_i64(dy)),
+//!         (2 * j, BigRational::from_i64(-dx)),
+//!         (2 * j + 1, BigRational::from_i64(-dy)),
+//!     ])
+//! };
+//! let mut echelon = Echelon::new(8, EchelonOptions::tracked());
+//! for (i, j) in [(0, 1), (0, 2), (1, 3), (2, 3), (1, 2)] {
+//!     assert!(echelon.insert(dist(i, j)).is_independent());
+//! }
+//! let redundant = echelon.insert(dist(0, 3));
+//! assert_eq!(echelon.rank(), 5);
+//! // dist(p1, p4) is redundant with all five other distances.
+//! assert_eq!(redundant.combination().map(|c| c.len()), Some(5));
+//! assert!(matches!(redundant, Insertion::Dependent { .. }));
+//! // x1 = 4/5 y3 + x4 − 4/5 y4: the first row of the RREF.
+//! let x1 = echelon.pivot_row(0).unwrap();
+//! assert_eq!(x1.get(5), Some(&BigRational::new((-4).into(), 5.into())));
+//! ```
+//!
+//! # Choosing a backend
+//!
+//! Exactness first: rank is not continuous, so a float rank is a guess. On a rational witness
+//! use [`analyse_rows_exact`]; for incremental work (insertions interleaved with
+//! [`Echelon::make_free`]) use an [`Echelon`] over [`ModP`] and certify its dependencies with
+//! [`lift_dependency`], keeping an exact backend for what does not lift. The rational
+//! backends are the reference the others are tested against, and are fine for small systems.
+//! The `f64` backend with a tolerance is for approximate witnesses only.
+//!
+//! Rough costs (release build, 200×200 random sparse integer matrix of rank 181, 6 entries a
+//! row; `examples/timing.rs`): [`ModP`] and `f64` ≈ 4–5 ms, faer's QR ≈ 0.6 ms,
+//! [`analyse_rows_exact`] ≈ 13 ms, `rug::Rational` ≈ 1.1 s, [`BigRational`] ≈ 12 s. Rational
+//! Gauss-Jordan is slow because of coefficient growth, and tracking combinations over ℚ costs
+//! about five times more again (the stored combinations form the dense inverse of the pivot
+//! block); modulo a prime both are cheap, which is why the exact path is modular.
+//!
+//! # Complexity of an insertion
+//!
+//! Reduction touches only the pivot rows named by the new row's entries; a new pivot touches
+//! only the stored rows that have an entry in its column (a column → rows index). Independent
+//! blocks therefore cost nothing in each other: 100,000 rows in 8×8 blocks take about 0.08 s
+//! over [`ModP`] (0.16 s with combinations).
+
+mod echelon;
+mod error;
+mod exact;
+mod field;
+mod float;
+mod modp;
+#[cfg(feature = "rug")]
+mod rug_field;
+mod sparse;
+
+pub use echelon::{Echelon, EchelonOptions, Insertion, RowAnalysis, analyse_rows};
+pub use error::RankError;
+pub use exact::{
+    Proof, SECOND_PRIME, THIRD_PRIME, analyse_rows_exact, lift_dependency, rational_reconstruction,
+};
+pub use field::Field;
+pub use float::float_rank_qr;
+pub use modp::{ModP, ModPrime};
+pub use num_rational::BigRational;
+#[cfg(feature = "rug")]
+pub use rug_field::{big_to_rug, rug_to_big};
+pub use sparse::SparseRow;

@@ -1,0 +1,255 @@
+//! The [`Field`] trait and its rational and floating-point backends.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+
+use crate::error::{RankError, describe};
+
+/// A field with exact arithmetic, or `f64`.
+///
+/// The trait describes algebra, not floating point: [`Field::is_zero`] is the literal test
+/// (`== 0.0` for `f64`) and tolerances are explicit options of the algorithms that use them
+/// ([`EchelonOptions::tolerance`](crate::EchelonOptions::tolerance)). Arithmetic takes its
+/// operands by reference so that big rationals are not cloned needlessly.
+///
+/// Implemented for [`BigRational`] (`"rational"`), [`ModP`](crate::ModP) and
+/// [`ModPrime`](crate::ModPrime) (`"modp"`), `f64` (`"float"`) and, with the `rug` feature,
+/// `rug::Rational` (`"rug"`).
+pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
+    /// Short name of the backend, for reports: `"rational"`, `"rug"`, `"modp"` or `"float"`.
+    const NAME: &'static str;
+    /// Whether arithmetic is exact (`false` only for `f64`).
+    const EXACT: bool;
+    /// The additive identity.
+    fn zero() -> Self;
+    /// The multiplicative identity.
+    fn one() -> Self;
+    /// The exact zero test (`f64`: `== 0.0`).
+    fn is_zero(&self) -> bool;
+    /// The image of an integer.
+    fn from_i64(v: i64) -> Self;
+    /// The image of a rational number.
+    ///
+    /// # Errors
+    /// [`RankError::DenominatorDivisibleByPrime`] in a prime field whose modulus divides the
+    /// denominator; [`RankError::NotRepresentable`] for `f64` when the value overflows.
+    fn from_rational(q: &BigRational) -> Result<Self, RankError>;
+    /// `self + rhs`.
+    fn add(&self, rhs: &Self) -> Self;
+    /// `self - rhs`.
+    fn sub(&self, rhs: &Self) -> Self;
+    /// `self * rhs`.
+    fn mul(&self, rhs: &Self) -> Self;
+    /// `-self`.
+    fn neg(&self) -> Self;
+    /// The multiplicative inverse, `None` for zero.
+    fn inv(&self) -> Option<Self>;
+    /// `self -= a * b`, the elimination hot loop.
+    fn sub_mul_assign(&mut self, a: &Self, b: &Self);
+    /// `|self|` as an `f64`, for tolerances and pivoting. Exact fields give an approximation;
+    /// prime fields give `0.0` for zero and `1.0` otherwise.
+    fn magnitude(&self) -> f64;
+}
+
+impl Field for BigRational {
+    const NAME: &'static str = "rational";
+    const EXACT: bool = true;
+
+    fn zero() -> Self {
+        Zero::zero()
+    }
+
+    fn one() -> Self {
+        One::one()
+    }
+
+    fn is_zero(&self) -> bool {
+        Zero::is_zero(self)
+    }
+
+    fn from_i64(v: i64) -> Self {
+        BigRational::from_integer(BigInt::from(v))
+    }
+
+    fn from_rational(q: &BigRational) -> Result<Self, RankError> {
+        Ok(q.clone())
+    }
+
+    fn add(&self, rhs: &Self) -> Self {
+        self + rhs
+    }
+
+    fn sub(&self, rhs: &Self) -> Self {
+        self - rhs
+    }
+
+    fn mul(&self, rhs: &Self) -> Self {
+        self * rhs
+    }
+
+    fn neg(&self) -> Self {
+        -self
+    }
+
+    fn inv(&self) -> Option<Self> {
+        if Zero::is_zero(self) { None } else { Some(self.recip()) }
+    }
+
+    fn sub_mul_assign(&mut self, a: &Self, b: &Self) {
+        if Zero::is_zero(a) || Zero::is_zero(b) {
+            return;
+        }
+        let (p, q) = reduced_product(a, b);
+        subtract_fraction(self, p, q);
+    }
+
+    fn magnitude(&self) -> f64 {
+        self.abs().to_f64().unwrap_or(f64::INFINITY)
+    }
+}
+
+/// `a * b` as a numerator and a positive denominator in lowest terms, cancelling across
+/// (`gcd(a.numer, b.denom)` and `gcd(b.numer, a.denom)`) so that no gcd of the full product is
+/// needed; integer operands skip the gcds.
+fn reduced_product(a: &BigRational, b: &BigRational) -> (BigInt, BigInt) {
+    let (an, ad) = (a.numer(), a.denom());
+    let (bn, bd) = (b.numer(), b.denom());
+    if ad.is_one() && bd.is_one() {
+        return (an * bn, BigInt::one());
+    }
+    let g1 = if bd.is_one() { BigInt::one() } else { an.gcd(bd) };
+    let g2 = if ad.is_one() { BigInt::one() } else { bn.gcd(ad) };
+    let divide = |x: &BigInt, g: &BigInt| if g.is_one() { x.clone() } else { x / g };
+    let numer = divide(an, &g1) * divide(bn, &g2);
+    let denom = divide(ad, &g2) * divide(bd, &g1);
+    (numer, denom)
+}
+
+/// `x -= p / q` for `p / q` in lowest terms with `q > 0`, by Knuth's method (TAOCP 4.5.1):
+/// only the gcd of the two denominators and one small gcd are computed.
+fn subtract_fraction(x: &mut BigRational, p: BigInt, q: BigInt) {
+    let (n, d) =
+        std::mem::replace(x, BigRational::new_raw(BigInt::zero(), BigInt::one())).into_raw();
+    let (numer, denom) = if d.is_one() && q.is_one() {
+        (n - p, d)
+    } else if d == q {
+        let t = n - p;
+        let g = t.gcd(&d);
+        if g.is_one() { (t, d) } else { (t / &g, d / g) }
+    } else {
+        let g = d.gcd(&q);
+        if g.is_one() {
+            (&n * &q - &p * &d, d * q)
+        } else {
+            let d1 = &d / &g;
+            let t = &n * (&q / &g) - &p * &d1;
+            let g2 = t.gcd(&g);
+            if g2.is_one() { (t, d1 * q) } else { (t / &g2, d1 * (q / g2)) }
+        }
+    };
+    *x = if numer.is_zero() {
+        BigRational::new_raw(numer, BigInt::one())
+    } else {
+        BigRational::new_raw(numer, denom)
+    };
+}
+
+impl Field for f64 {
+    const NAME: &'static str = "float";
+    const EXACT: bool = false;
+
+    fn zero() -> Self {
+        0.0
+    }
+
+    fn one() -> Self {
+        1.0
+    }
+
+    fn is_zero(&self) -> bool {
+        *self == 0.0
+    }
+
+    fn from_i64(v: i64) -> Self {
+        v as f64
+    }
+
+    fn from_rational(q: &BigRational) -> Result<Self, RankError> {
+        match q.to_f64() {
+            Some(v) if v.is_finite() => Ok(v),
+            _ => Err(RankError::NotRepresentable { field: Self::NAME, value: describe(q) }),
+        }
+    }
+
+    fn add(&self, rhs: &Self) -> Self {
+        self + rhs
+    }
+
+    fn sub(&self, rhs: &Self) -> Self {
+        self - rhs
+    }
+
+    fn mul(&self, rhs: &Self) -> Self {
+        self * rhs
+    }
+
+    fn neg(&self) -> Self {
+        -self
+    }
+
+    fn inv(&self) -> Option<Self> {
+        if *self == 0.0 { None } else { Some(1.0 / self) }
+    }
+
+    fn sub_mul_assign(&mut self, a: &Self, b: &Self) {
+        *self -= a * b;
+    }
+
+    fn magnitude(&self) -> f64 {
+        self.abs()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    #[test]
+    fn rational_sub_mul_matches_plain_arithmetic() {
+        let values = [q(0, 1), q(1, 1), q(-3, 1), q(2, 3), q(-5, 6), q(7, 12), q(9, 4), q(1, 18)];
+        for x in &values {
+            for a in &values {
+                for b in &values {
+                    let mut y = x.clone();
+                    y.sub_mul_assign(a, b);
+                    let expected = x - a * b;
+                    assert_eq!(y, expected, "{x} - {a}*{b}");
+                    // the result is in lowest terms with a positive denominator
+                    assert_eq!(y, BigRational::new(y.numer().clone(), y.denom().clone()));
+                    assert!(y.denom().is_positive());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn float_conversion_rejects_overflow() {
+        let huge = BigRational::from_integer(BigInt::from(10).pow(400u32));
+        assert!(matches!(f64::from_rational(&huge), Err(RankError::NotRepresentable { .. })));
+        assert_eq!(f64::from_rational(&q(-3, 4)), Ok(-0.75));
+    }
+
+    #[test]
+    fn inverses() {
+        assert_eq!(Field::inv(&q(-2, 3)), Some(q(-3, 2)));
+        assert_eq!(Field::inv(&q(0, 1)), None);
+        assert_eq!(Field::inv(&0.0f64), None);
+        assert_eq!(Field::inv(&4.0f64), Some(0.25));
+    }
+}
