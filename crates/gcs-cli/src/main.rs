@@ -6,6 +6,7 @@
 
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
+mod analyze;
 mod batch;
 mod check;
 
@@ -13,6 +14,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use gcs_decompose::Backend;
 
 /// Analyse geometric constraint systems (CAD sketches and assemblies) without solving them.
 ///
@@ -30,6 +32,32 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Analyse models by the witness method: rank, degrees of freedom, trivial motions and
+    /// redundant constraints with the constraints they are redundant with.
+    ///
+    /// The rank is decided exactly by default (modular elimination certified over the
+    /// rationals, or rational elimination), at a witness: the sketch when it satisfies the
+    /// constraints and is generic, otherwise a rational configuration built from the seed.
+    Analyze {
+        /// The arithmetic that decides the rank: exact (proven), rational (num), rug (GMP,
+        /// needs the rug feature), modp (modulo 2^61 − 1, not proven), float (with
+        /// --tolerance).
+        #[arg(long, value_enum, default_value_t = BackendArg::Exact)]
+        backend: BackendArg,
+        /// Seed of the random choices of the witness.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Relative tolerance of the float backend: an entry is zero when it is at most this
+        /// times the largest entry of its row.
+        #[arg(long, default_value_t = 1e-9)]
+        tolerance: f64,
+        /// Output format: human-readable text, or JSON Lines (one object per model).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Model files or directories.
+        #[arg(required = true, value_name = "PATH")]
+        paths: Vec<PathBuf>,
+    },
     /// Validate models and print their counts: entities, constraints, the sum of entity DOF,
     /// the sum of constraint DOC and the naive count DOF − DOC.
     ///
@@ -45,6 +73,21 @@ enum Command {
     },
 }
 
+/// Arithmetic backends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum BackendArg {
+    /// The rank over Q, proven (modular elimination certified over Q, or rational).
+    Exact,
+    /// Rational elimination with num-rational.
+    Rational,
+    /// Rational elimination with GMP (build with --features rug).
+    Rug,
+    /// Elimination modulo 2^61 − 1 (exact with overwhelming probability, not proven).
+    Modp,
+    /// f64 elimination with a relative tolerance.
+    Float,
+}
+
 /// Report formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Format {
@@ -58,5 +101,25 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
+        Command::Analyze { backend, seed, tolerance, format, paths } => {
+            if !(tolerance.is_finite() && tolerance >= 0.0) {
+                eprintln!("error: --tolerance must be a finite number ≥ 0");
+                return ExitCode::from(2);
+            }
+            let backend = match backend {
+                BackendArg::Exact => Backend::Exact,
+                BackendArg::Rational => Backend::Rational,
+                BackendArg::Rug => Backend::Rug,
+                BackendArg::Modp => Backend::ModP,
+                BackendArg::Float => Backend::Float { tolerance },
+            };
+            if !backend.available() {
+                eprintln!(
+                    "error: the rug backend is not in this build; rebuild with --features rug"
+                );
+                return ExitCode::from(2);
+            }
+            analyze::run(&paths, &analyze::Settings { backend, seed, format })
+        }
     }
 }

@@ -5,7 +5,8 @@ use std::process::Command;
 
 fn gcs(args: &[&str]) -> (i32, String, String) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root).output().unwrap();
+    let out =
+        Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root).output().unwrap();
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8(out.stdout).unwrap(),

@@ -1,0 +1,401 @@
+//! The witness analysis (witness paper §2–§3, §6): rank, degrees of freedom, trivial motions,
+//! redundant constraints in file order with their spanning groups.
+
+use gcs_jacobian::{
+    Jacobian, JacobianError, Layout, RowOwner, Witness, WitnessOptions, find_witness, motions,
+};
+use gcs_model::{ConstraintIdx, System};
+use gcs_rank::{
+    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Proof, RowAnalysis, SparseRow,
+    analyse_rows, analyse_rows_exact, float_rank_qr,
+};
+
+use crate::error::AnalysisError;
+
+/// The arithmetic the rank is decided in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Backend {
+    /// The rank over ℚ, proven: modular elimination certified over ℚ, or rational
+    /// elimination when the certificate fails. The default.
+    Exact,
+    /// Rational elimination with `num-rational`.
+    Rational,
+    /// Rational elimination with GMP (`rug`); only with the `rug` feature.
+    Rug,
+    /// Elimination modulo the prime 2^61 − 1: exact with overwhelming probability, not proven.
+    ModP,
+    /// `f64` elimination; an entry is zero when `|x| <= tolerance · (largest entry of its row)`.
+    Float {
+        /// The relative tolerance.
+        tolerance: f64,
+    },
+}
+
+impl Backend {
+    /// The report name: `exact`, `rational`, `rug`, `modp`, `float`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Exact => "exact",
+            Backend::Rational => "rational",
+            Backend::Rug => "rug",
+            Backend::ModP => "modp",
+            Backend::Float { .. } => "float",
+        }
+    }
+
+    /// Whether the backend was compiled in (`rug` needs the cargo feature).
+    pub fn available(self) -> bool {
+        !matches!(self, Backend::Rug) || cfg!(feature = "rug")
+    }
+}
+
+/// Options of [`analyze`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnalysisOptions {
+    /// The arithmetic.
+    pub backend: Backend,
+    /// The witness search (its seed is the report's seed).
+    pub witness: WitnessOptions,
+}
+
+impl Default for AnalysisOptions {
+    fn default() -> Self {
+        AnalysisOptions { backend: Backend::Exact, witness: WitnessOptions::default() }
+    }
+}
+
+/// A constraint whose equations depend on equations of constraints before it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Redundancy {
+    /// The constraint.
+    pub constraint: ConstraintIdx,
+    /// How many of its rows are dependent.
+    pub rows: usize,
+    /// Its DOC (`rows < doc`: partially redundant).
+    pub doc: usize,
+    /// The earlier constraints taking part in the dependency (the fundamental circuit minus
+    /// the constraint itself), in file order. Deleting any one of them, or the constraint,
+    /// removes this dependency.
+    pub spanning_group: Vec<ConstraintIdx>,
+}
+
+/// The result of the witness analysis of one system (format §2).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Analysis {
+    /// The backend that decided the rank.
+    pub backend: Backend,
+    /// How the exact backend proved its rank (`None` for the others).
+    pub proof: Option<Proof>,
+    /// The witness.
+    pub witness: Witness,
+    /// The seed of the witness search.
+    pub seed: u64,
+    /// Columns of the Jacobian.
+    pub unknowns: usize,
+    /// Rows of the Jacobian, entity-internal rows included.
+    pub equations: usize,
+    /// Entity-internal rows among them (normalisations, Plücker relations).
+    pub internal_equations: usize,
+    /// Rank of the Jacobian at the witness.
+    pub rank: usize,
+    /// `unknowns − rank`.
+    pub dof_absolute: usize,
+    /// Dimension of the displacements admitted: `rank(T) − rank(J·T)`.
+    pub trivial_motions: usize,
+    /// `dof_absolute − trivial_motions`.
+    pub dof: usize,
+    /// Redundant constraints in file order.
+    pub redundant: Vec<Redundancy>,
+    /// For the float backend, the rank by faer's column-pivoted QR (when the matrix is small
+    /// enough to be made dense), as a cross-check of the incremental elimination.
+    pub float_qr_rank: Option<usize>,
+}
+
+impl Analysis {
+    /// `dof == 0`.
+    pub fn rigid(&self) -> bool {
+        self.dof == 0
+    }
+
+    /// Rigid and without redundant constraints.
+    pub fn well_constrained(&self) -> bool {
+        self.rigid() && self.redundant.is_empty()
+    }
+}
+
+/// Dense matrices up to this many entries get the faer QR cross-check.
+const QR_LIMIT: usize = 4_000_000;
+
+/// Analyses a system: finds a witness, assembles the Jacobian there in the chosen arithmetic,
+/// inserts its rows in file order (entity-internal rows first) and reads off the rank, the
+/// redundant constraints with their spanning groups, and the trivial motions.
+///
+/// # Errors
+/// No witness ([`AnalysisError::Witness`]), a backend not compiled in, or an arithmetic
+/// failure.
+pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, AnalysisError> {
+    if !options.backend.available() {
+        return Err(AnalysisError::BackendUnavailable(options.backend.name()));
+    }
+    let layout = Layout::new(system);
+    let witness = find_witness(system, &layout, &options.witness)?;
+    analyze_at(system, &layout, witness, options)
+}
+
+/// The outcome of inserting the rows, in some field.
+struct Outcome {
+    rank: usize,
+    /// Per row: `None` if independent, else the rows of its combination.
+    dependent: Vec<Option<Vec<usize>>>,
+    trivial: usize,
+    proof: Option<Proof>,
+    float_qr_rank: Option<usize>,
+}
+
+fn supports<F>(analysis: &RowAnalysis<F>) -> Vec<Option<Vec<usize>>> {
+    analysis
+        .outcomes
+        .iter()
+        .map(|o| match o {
+            Insertion::Independent { .. } => None,
+            Insertion::Dependent { combination } => Some(
+                combination
+                    .as_ref()
+                    .map(|c| c.iter().map(|(i, _)| *i).collect())
+                    .unwrap_or_default(),
+            ),
+        })
+        .collect()
+}
+
+/// `rank(T) − rank(J·T)` in the field `F` with the given options.
+fn trivial_motions<F: Field>(
+    jacobian: &Jacobian<F>,
+    generators: &[Vec<F>],
+    options: EchelonOptions,
+) -> usize {
+    let k = generators.len();
+    let t_rows: Vec<SparseRow<F>> = generators
+        .iter()
+        .map(|g| {
+            SparseRow::from_entries(
+                g.iter()
+                    .enumerate()
+                    .filter(|(_, v)| !v.is_zero())
+                    .map(|(i, v)| (i, v.clone()))
+                    .collect(),
+            )
+        })
+        .collect();
+    let rank_t = analyse_rows(jacobian.ncols, t_rows, options.clone()).rank;
+    let jt = jacobian.rows.iter().map(|row| {
+        SparseRow::from_entries(
+            (0..k)
+                .map(|j| (j, row.dot_dense(&generators[j])))
+                .filter(|(_, v)| !v.is_zero())
+                .collect(),
+        )
+    });
+    let mut e = Echelon::new(k, options);
+    for r in jt {
+        if e.rank() == k {
+            break;
+        }
+        e.insert(r);
+    }
+    rank_t - e.rank()
+}
+
+fn generic<F: Field>(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+    options: EchelonOptions,
+) -> Result<(Outcome, usize, usize), AnalysisError> {
+    let jacobian: Jacobian<F> = witness.jacobian(system, layout)?;
+    let generators = motions::generators::<F>(system, layout, &witness.coords_in()?)?;
+    let trivial = trivial_motions(&jacobian, &generators, options.clone());
+    let n = jacobian.rows.len();
+    let internal = jacobian.internal_count();
+    let analysis = analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), options);
+    Ok((
+        Outcome {
+            rank: analysis.rank,
+            dependent: supports(&analysis),
+            trivial,
+            proof: None,
+            float_qr_rank: None,
+        },
+        n,
+        internal,
+    ))
+}
+
+/// The analysis at a given witness.
+///
+/// # Errors
+/// As [`analyze`].
+pub fn analyze_at(
+    system: &System,
+    layout: &Layout,
+    witness: Witness,
+    options: &AnalysisOptions,
+) -> Result<Analysis, AnalysisError> {
+    let tracked = EchelonOptions::tracked();
+    let (outcome, equations, internal) = match options.backend {
+        Backend::Exact => {
+            let jacobian: Jacobian<BigRational> = witness.jacobian(system, layout)?;
+            let (analysis, proof) = analyse_rows_exact(jacobian.ncols, &jacobian.rows, true)?;
+            // Trivial motions, exactly: T and J·T have at most six columns.
+            let generators = motions::generators::<BigRational>(system, layout, &witness.coords)?;
+            let trivial = exact_trivial_motions(&jacobian, &generators)?;
+            let n = jacobian.rows.len();
+            let internal = jacobian.internal_count();
+            (
+                Outcome {
+                    rank: analysis.rank,
+                    dependent: supports(&analysis),
+                    trivial,
+                    proof: Some(proof),
+                    float_qr_rank: None,
+                },
+                n,
+                internal,
+            )
+        }
+        Backend::Rational => generic::<BigRational>(system, layout, &witness, tracked)?,
+        Backend::ModP => generic::<ModP>(system, layout, &witness, tracked)?,
+        Backend::Rug => rug_backend(system, layout, &witness)?,
+        Backend::Float { tolerance } => {
+            let (mut outcome, n, internal) =
+                generic::<f64>(system, layout, &witness, EchelonOptions::float(tolerance))?;
+            let jacobian: Jacobian<f64> = witness.jacobian(system, layout)?;
+            if jacobian.ncols.saturating_mul(jacobian.rows.len()) <= QR_LIMIT {
+                outcome.float_qr_rank =
+                    Some(float_rank_qr(jacobian.ncols, &jacobian.rows, tolerance));
+            }
+            (outcome, n, internal)
+        }
+    };
+    let owners: Vec<RowOwner> = {
+        // Owners do not depend on the field: rebuild them from a ModP assembly would cost a
+        // second evaluation, so derive them from the plan directly.
+        row_owners(system, layout, &witness)
+    };
+    let mut redundant: Vec<Redundancy> = Vec::new();
+    for (row, dep) in outcome.dependent.iter().enumerate() {
+        let Some(support) = dep else { continue };
+        let RowOwner::Constraint(c) = owners[row] else { continue };
+        let group = support.iter().filter_map(|&i| match owners[i] {
+            RowOwner::Constraint(d) if d != c => Some(d),
+            _ => None,
+        });
+        match redundant.last_mut() {
+            Some(r) if r.constraint == c => {
+                r.rows += 1;
+                r.spanning_group.extend(group);
+            }
+            _ => redundant.push(Redundancy {
+                constraint: c,
+                rows: 1,
+                doc: system.constraint(c).doc,
+                spanning_group: group.collect(),
+            }),
+        }
+    }
+    for r in &mut redundant {
+        r.spanning_group.sort();
+        r.spanning_group.dedup();
+    }
+    let unknowns = layout.ncols();
+    let dof_absolute = unknowns - outcome.rank;
+    Ok(Analysis {
+        backend: options.backend,
+        proof: outcome.proof,
+        seed: options.witness.seed,
+        witness,
+        unknowns,
+        equations,
+        internal_equations: internal,
+        rank: outcome.rank,
+        dof_absolute,
+        trivial_motions: outcome.trivial,
+        dof: dof_absolute.saturating_sub(outcome.trivial),
+        redundant,
+        float_qr_rank: outcome.float_qr_rank,
+    })
+}
+
+fn row_owners(system: &System, layout: &Layout, witness: &Witness) -> Vec<RowOwner> {
+    let mut owners = Vec::new();
+    for e in system.entity_indices() {
+        if let Some(r) = layout.repr(e) {
+            owners.extend(std::iter::repeat_n(RowOwner::Internal(e), r.internal_rows()));
+        }
+    }
+    for (c, p) in system.constraint_indices().zip(&witness.plan.constraints) {
+        owners.extend(std::iter::repeat_n(RowOwner::Constraint(c), p.rows.len()));
+    }
+    owners
+}
+
+/// `rank(T) − rank(J·T)` over ℚ, proven by the certified exact path.
+fn exact_trivial_motions(
+    jacobian: &Jacobian<BigRational>,
+    generators: &[Vec<BigRational>],
+) -> Result<usize, AnalysisError> {
+    let k = generators.len();
+    let t_rows: Vec<SparseRow<BigRational>> = generators
+        .iter()
+        .map(|g| {
+            SparseRow::from_entries(
+                g.iter()
+                    .enumerate()
+                    .filter(|(_, v)| !v.is_zero())
+                    .map(|(i, v)| (i, v.clone()))
+                    .collect(),
+            )
+        })
+        .collect();
+    let (t, _) = analyse_rows_exact(jacobian.ncols, &t_rows, false)?;
+    let jt: Vec<SparseRow<BigRational>> = jacobian
+        .rows
+        .iter()
+        .map(|row| {
+            SparseRow::from_entries(
+                (0..k)
+                    .map(|j| (j, row.dot_dense(&generators[j])))
+                    .filter(|(_, v)| !v.is_zero())
+                    .collect(),
+            )
+        })
+        .filter(|r| !r.is_zero())
+        .collect();
+    let (jt, _) = analyse_rows_exact(k, &jt, false)?;
+    Ok(t.rank - jt.rank)
+}
+
+#[cfg(feature = "rug")]
+fn rug_backend(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+) -> Result<(Outcome, usize, usize), AnalysisError> {
+    generic::<rug::Rational>(system, layout, witness, EchelonOptions::tracked())
+}
+
+#[cfg(not(feature = "rug"))]
+fn rug_backend(
+    _system: &System,
+    _layout: &Layout,
+    _witness: &Witness,
+) -> Result<(Outcome, usize, usize), AnalysisError> {
+    Err(AnalysisError::BackendUnavailable("rug"))
+}
+
+/// Witness errors surface as analysis errors.
+impl From<JacobianError> for AnalysisError {
+    fn from(e: JacobianError) -> Self {
+        AnalysisError::Witness(e)
+    }
+}

@@ -1,0 +1,20 @@
+//! The error type of the crate.
+
+use gcs_jacobian::JacobianError;
+use gcs_rank::RankError;
+
+/// Why a system could not be analysed. A mathematical outcome (redundant, flexible) is never an
+/// error: it is in the [`crate::Analysis`].
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum AnalysisError {
+    /// No witness (see [`JacobianError`]).
+    #[error("{0}")]
+    Witness(JacobianError),
+    /// A failure of the arithmetic.
+    #[error("arithmetic: {0}")]
+    Rank(#[from] RankError),
+    /// The backend was not compiled in.
+    #[error("backend {0} is not available in this build (rebuild with --features {0})")]
+    BackendUnavailable(&'static str),
+}

@@ -1,0 +1,763 @@
+//! Constructive placement of a rational witness (DESIGN.md, "Witness").
+//!
+//! Entities are placed one at a time inside the solution set of their parameter-free
+//! constraints to the entities already placed. Those constraints are linear in the entity
+//! being placed (incidences, parallelism, perpendicularity, midpoints, symmetry, horizontal and
+//! vertical, fixes: bilinear forms), except the quadratic ones (a point on a circle or a
+//! sphere, tangencies, equal lengths), which all have the form `|P|² = |M|²` with `P`, `M`
+//! linear in the entity: the placement picks a rational orthogonal matrix `R` (a Householder
+//! reflection, exactly orthogonal for any rational vector) and solves the linear `P = R·M`.
+//! That is the tangent half-angle parametrisation of rational points on circles, generalised:
+//! a point on a circle `c + r·u` with `u` a rational unit vector, a circle through a point,
+//! tangent to a line with a rational unit normal or to another circle, a segment of the same
+//! length as another. Metric constraints (distances, angles, radii) are ignored: their values
+//! are read off the witness.
+//!
+//! Every free choice is random (from the seed), near a preference: the sketch when there is
+//! one, so that the witness keeps the sketch's chirality (which side, which tangency), else a
+//! random position. The result is checked exactly against every parameter-free equation.
+//!
+//! The order is greedy: next comes the unplaced entity with the most degrees of constraint
+//! towards the placed ones (ties: file order), so that determined entities are constructed
+//! from their determiners; an entity whose equations have no rational solution is retried
+//! when more of its neighbours are placed, and the placement fails if it never succeeds.
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use gcs_model::rng::SplitMix64;
+use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
+use num_traits::{One, Zero};
+
+use crate::dual::Dual;
+use crate::equations::{self, Local};
+use crate::layout::{Layout, Repr};
+use crate::qla::{self, Affine, Q};
+
+/// How to place.
+#[derive(Clone, Debug)]
+pub(crate) struct PlaceOptions {
+    /// Random seed.
+    pub(crate) seed: u64,
+    /// Amplitude of the random moves, relative to the model's scale.
+    pub(crate) noise: f64,
+}
+
+/// Why a placement failed: the entity that could not be placed and the constraints binding it
+/// to the placed ones.
+#[derive(Clone, Debug)]
+pub(crate) struct PlaceFailure {
+    pub(crate) entity: EntityIdx,
+    pub(crate) constraints: Vec<ConstraintIdx>,
+}
+
+struct Placer<'a> {
+    system: &'a System,
+    layout: &'a Layout,
+    /// Current coordinates: placed entities hold their placement, the others a preference.
+    coords: Vec<Q>,
+    pref: Vec<Q>,
+    placed: Vec<bool>,
+    /// Exact (parameter-free) constraints by base entity.
+    adjacent: Vec<Vec<ConstraintIdx>>,
+    /// Base entities of each constraint.
+    bases: Vec<Vec<EntityIdx>>,
+    /// Variant of each constraint (tangency branch) chosen from the preference.
+    variant: Vec<usize>,
+    rng: SplitMix64,
+    scale: f64,
+    noise: f64,
+}
+
+fn is_exact_kind(kind: ConstraintKind) -> bool {
+    !kind.is_metric()
+}
+
+/// The sketch in layout coordinates, with random positions for entities that have none.
+pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64) -> (Vec<Q>, f64) {
+    let mut scale: f64 = 0.0;
+    for e in system.entity_indices() {
+        if let Some(s) = crate::sketch::sketch_coords(system, e)
+            && layout.repr(e).is_some_and(|r| !r.homogeneous())
+        {
+            for x in &s {
+                scale = scale.max(qla::to_f64(x).abs());
+            }
+        }
+    }
+    let scale = if scale > 0.0 { scale } else { 10.0 };
+    let mut pref = vec![Q::zero(); layout.ncols()];
+    let n = system.dim().coords();
+    for e in system.entity_indices() {
+        let Some(repr) = layout.repr(e) else { continue };
+        let cols = layout.columns(e);
+        let s = crate::sketch::sketch_coords(system, e).unwrap_or_else(|| {
+            let mut rnd = |k: usize| -> Vec<Q> {
+                (0..k).map(|_| qla::approx(scale * (2.0 * rng.unit_f64() - 1.0), 1000)).collect()
+            };
+            match repr {
+                Repr::Point2 | Repr::Point3 => rnd(n),
+                Repr::Line2 => {
+                    let (p, q) = (rnd(2), rnd(2));
+                    let l = crate::sketch::line2_through(&p, &q);
+                    if l.iter().all(Zero::is_zero) {
+                        vec![Q::one(), Q::zero(), Q::zero()]
+                    } else {
+                        l
+                    }
+                }
+                Repr::Line3 => crate::sketch::line3_through(&rnd(3), &rnd(3)),
+                Repr::Plane => crate::sketch::plane_through(&rnd(3), &rnd(3)),
+                Repr::Circle | Repr::Sphere => {
+                    let mut c = rnd(n);
+                    c.push(qla::approx(scale * (0.1 + 0.3 * rng.unit_f64()), 1000));
+                    c
+                }
+            }
+        });
+        for (col, v) in cols.zip(s) {
+            pref[col] = v;
+        }
+    }
+    (pref, scale)
+}
+
+/// Places every entity; returns the witness coordinates or the entity that could not be
+/// placed.
+pub(crate) fn place(
+    system: &System,
+    layout: &Layout,
+    pref: &[Q],
+    scale: f64,
+    options: &PlaceOptions,
+) -> Result<Vec<Q>, PlaceFailure> {
+    let nent = system.entities().len();
+    let mut adjacent = vec![Vec::new(); nent];
+    let mut bases = Vec::with_capacity(system.constraints().len());
+    for ci in system.constraint_indices() {
+        let b = system.constraint_base_entities(ci);
+        if is_exact_kind(system.constraint(ci).kind) {
+            for e in &b {
+                adjacent[e.index()].push(ci);
+            }
+        }
+        bases.push(b);
+    }
+    let attempts = if nent <= 2000 { 8 } else { 2 };
+    let mut rng = SplitMix64::new(options.seed ^ 0x5EED);
+    let mut failure = None;
+    for attempt in 0..attempts {
+        // The first attempt breaks ties in file order, the others at random.
+        let tiebreak: Vec<u64> =
+            (0..nent as u64).map(|i| if attempt == 0 { i } else { rng.next_u64() }).collect();
+        let mut p = Placer {
+            system,
+            layout,
+            coords: pref.to_vec(),
+            pref: pref.to_vec(),
+            placed: vec![false; nent],
+            adjacent: adjacent.clone(),
+            bases: bases.clone(),
+            variant: vec![0; system.constraints().len()],
+            rng: SplitMix64::new(options.seed.wrapping_add(attempt as u64)),
+            scale,
+            noise: options.noise,
+        };
+        p.choose_variants();
+        match p.run(&tiebreak) {
+            Ok(()) => return Ok(p.coords),
+            Err(f) => failure = Some(f),
+        }
+    }
+    Err(failure.unwrap_or(PlaceFailure { entity: EntityIdx(0), constraints: Vec::new() }))
+}
+
+impl Placer<'_> {
+    /// Tangency branches from the preference (the sketch's side).
+    fn choose_variants(&mut self) {
+        for ci in self.system.constraint_indices() {
+            let c = self.system.constraint(ci);
+            let nv = equations::variants(self.system, c);
+            if nv < 2 || !is_exact_kind(c.kind) {
+                continue;
+            }
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.pref);
+            let none = |_: EntityIdx| None;
+            let best = (0..nv)
+                .map(|v| {
+                    let cand = equations::candidates(self.system, c, v, &local, &none);
+                    let r: f64 = cand.rows.iter().map(|r| qla::to_f64(&r.value).abs()).sum();
+                    (r, v)
+                })
+                .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a });
+            self.variant[ci.index()] = best.1;
+        }
+    }
+
+    /// DOC of the constraints binding `e` to placed entities only.
+    fn score(&self, e: EntityIdx) -> usize {
+        self.ready(e).iter().map(|c| self.system.constraint(*c).doc).sum()
+    }
+
+    /// The exact constraints on `e` whose other base entities are all placed.
+    fn ready(&self, e: EntityIdx) -> Vec<ConstraintIdx> {
+        self.adjacent[e.index()]
+            .iter()
+            .copied()
+            .filter(|c| self.bases[c.index()].iter().all(|b| *b == e || self.placed[b.index()]))
+            .collect()
+    }
+
+    fn run(&mut self, tiebreak: &[u64]) -> Result<(), PlaceFailure> {
+        let system = self.system;
+        let mut heap: BinaryHeap<(usize, Reverse<u64>, u32)> = BinaryHeap::new();
+        let mut score = vec![0usize; system.entities().len()];
+        let mut failed_at: Vec<Option<usize>> = vec![None; system.entities().len()];
+        for e in system.entity_indices() {
+            if self.layout.repr(e).is_some() {
+                score[e.index()] = self.score(e);
+                heap.push((score[e.index()], Reverse(tiebreak[e.index()]), e.0));
+            }
+        }
+        let mut last_failure = None;
+        while let Some((s, _, i)) = heap.pop() {
+            let e = EntityIdx(i);
+            if self.placed[e.index()] || s != score[e.index()] {
+                continue;
+            }
+            if failed_at[e.index()] == Some(s) {
+                continue;
+            }
+            let ready = self.ready(e);
+            if self.place_one(e, &ready) {
+                self.placed[e.index()] = true;
+                // Neighbours may now have more constraints towards placed entities.
+                let mut touched: Vec<EntityIdx> = Vec::new();
+                for c in &self.adjacent[e.index()] {
+                    for b in &self.bases[c.index()] {
+                        if !self.placed[b.index()] && !touched.contains(b) {
+                            touched.push(*b);
+                        }
+                    }
+                }
+                for b in touched {
+                    let s = self.score(b);
+                    if s != score[b.index()] {
+                        score[b.index()] = s;
+                        heap.push((s, Reverse(tiebreak[b.index()]), b.0));
+                    }
+                }
+            } else {
+                failed_at[e.index()] = Some(s);
+                last_failure = Some(PlaceFailure { entity: e, constraints: ready });
+            }
+        }
+        if self
+            .placed
+            .iter()
+            .zip(system.entities())
+            .all(|(p, ent)| *p || Repr::of(ent.kind(), system.dim()).is_none())
+        {
+            Ok(())
+        } else {
+            let first_unplaced = system
+                .entity_indices()
+                .find(|e| !self.placed[e.index()] && self.layout.repr(*e).is_some());
+            Err(last_failure.unwrap_or(PlaceFailure {
+                entity: first_unplaced.unwrap_or(EntityIdx(0)),
+                constraints: Vec::new(),
+            }))
+        }
+    }
+
+    fn random_small(&mut self) -> Q {
+        qla::approx(self.noise * self.scale * (2.0 * self.rng.unit_f64() - 1.0), 1_000_000)
+    }
+
+    /// Places `e` under its ready constraints; on success writes its coordinates.
+    fn place_one(&mut self, e: EntityIdx, ready: &[ConstraintIdx]) -> bool {
+        let cols = self.layout.columns(e);
+        let n = cols.len();
+        let homogeneous = self.layout.repr(e).is_some_and(Repr::homogeneous);
+        let pref: Vec<Q> = self.pref[cols.clone()].to_vec();
+        // Linearise every equation at the preference, and at a shifted point to tell linear
+        // equations from quadratic ones.
+        let delta: Vec<Q> =
+            (0..n).map(|_| self.random_small() + Q::new(1.into(), 7.into())).collect();
+        let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
+        let mut quads: Vec<(AffineMap, AffineMap)> = Vec::new();
+        for &ci in ready {
+            let variant = self.variant[ci.index()];
+            let (f0, f1) = self.evaluate(e, ci, variant, &pref, &delta);
+            let split = self.split_maps(e, ci, variant, &pref, &delta);
+            for (k, (r0, r1)) in f0.iter().zip(&f1).enumerate() {
+                let g = &r0.1;
+                let predicted = &r0.0 + &qla::dot(g, &delta);
+                if predicted == r1.0 {
+                    if g.iter().all(Zero::is_zero) {
+                        if !r0.0.is_zero() {
+                            return false;
+                        }
+                        continue;
+                    }
+                    linear.push((g.clone(), qla::dot(g, &pref) - &r0.0));
+                } else if let Some(Some(maps)) = split.as_ref().and_then(|s| s.get(k).cloned()) {
+                    quads.push(maps);
+                } else {
+                    return false;
+                }
+            }
+        }
+        if self.layout.repr(e) == Some(Repr::Line3) {
+            // The Plücker relation d·m = 0 is ¼(|d + m|² − |d − m|²).
+            let unit = |i: usize, j: usize, sj: i64| -> (Vec<Q>, Q) {
+                let mut g = vec![Q::zero(); 6];
+                g[i] = Q::one();
+                g[j] = Q::from_integer(sj.into());
+                (g, Q::zero())
+            };
+            let plus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, 1)).collect() };
+            let minus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, -1)).collect() };
+            quads.push((plus, minus));
+        }
+        let Some(space) = qla::solve(n, &linear) else { return false };
+        let chosen = if quads.is_empty() {
+            self.choose(&space, &pref, homogeneous)
+        } else {
+            self.solve_quadrics(n, &linear, &quads, &pref, homogeneous)
+        };
+        let Some(x) = chosen else { return false };
+        if homogeneous && x.iter().all(Zero::is_zero) {
+            return false;
+        }
+        let old: Vec<Q> = self.coords[cols.clone()].to_vec();
+        for (col, v) in cols.clone().zip(&x) {
+            self.coords[col] = v.clone();
+        }
+        // Exact check of every ready equation.
+        let ok = ready.iter().all(|&ci| {
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
+            let none = |_: EntityIdx| None;
+            let sketch = |b: EntityIdx| crate::sketch::sketch_coords(self.system, b);
+            let c = self.system.constraint(ci);
+            let cand = if c.kind == ConstraintKind::Fix {
+                equations::candidates(self.system, c, self.variant[ci.index()], &local, &sketch)
+            } else {
+                equations::candidates(self.system, c, self.variant[ci.index()], &local, &none)
+            };
+            cand.rows.iter().all(|r| r.value.is_zero())
+        });
+        if !ok {
+            for (col, v) in cols.zip(old) {
+                self.coords[col] = v;
+            }
+        }
+        ok
+    }
+
+    /// The candidate equations of `ci` evaluated at `x = pref` and `x = pref + delta` for
+    /// entity `e`: `(value, gradient over e's coordinates)` at the first, value at the second.
+    fn evaluate(
+        &mut self,
+        e: EntityIdx,
+        ci: ConstraintIdx,
+        variant: usize,
+        pref: &[Q],
+        delta: &[Q],
+    ) -> (Vec<Linearised>, Vec<Linearised>) {
+        let c = self.system.constraint(ci);
+        let cols = self.layout.columns(e);
+        let mut at = |x: &[Q]| -> Vec<Linearised> {
+            for (col, v) in cols.clone().zip(x) {
+                self.coords[col] = v.clone();
+            }
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
+            let sketch = |b: EntityIdx| crate::sketch::sketch_coords(self.system, b);
+            let cand = equations::candidates(self.system, c, variant, &local, &sketch);
+            cand.rows.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
+        };
+        let f0 = at(pref);
+        let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
+        let f1 = at(&shifted);
+        for (col, v) in cols.zip(pref) {
+            self.coords[col] = v.clone();
+        }
+        (f0, f1)
+    }
+
+    /// The difference-of-squares form of a quadratic constraint as affine maps of `e`'s
+    /// coordinates (checked affine), one per candidate row.
+    fn split_maps(
+        &mut self,
+        e: EntityIdx,
+        ci: ConstraintIdx,
+        variant: usize,
+        pref: &[Q],
+        delta: &[Q],
+    ) -> Option<Vec<Option<(AffineMap, AffineMap)>>> {
+        let c = self.system.constraint(ci);
+        let cols = self.layout.columns(e);
+        let mut at = |x: &[Q]| {
+            for (col, v) in cols.clone().zip(x) {
+                self.coords[col] = v.clone();
+            }
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
+            equations::split(self.system, c, variant, &local).map(|(p, m)| {
+                let conv = |ds: &[Dual<Q>]| -> Vec<(Q, Vec<Q>)> {
+                    ds.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
+                };
+                (conv(&p), conv(&m))
+            })
+        };
+        let s0 = at(pref)?;
+        let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
+        let s1 = at(&shifted)?;
+        for (col, v) in cols.zip(pref) {
+            self.coords[col] = v.clone();
+        }
+        let affine = |z0: &[(Q, Vec<Q>)], z1: &[(Q, Vec<Q>)]| -> Option<AffineMap> {
+            let mut rows = Vec::new();
+            for (a, b) in z0.iter().zip(z1) {
+                if &a.0 + &qla::dot(&a.1, delta) != b.0 {
+                    return None;
+                }
+                // Value at x: a.0 + g·(x − pref) = g·x + (a.0 − g·pref).
+                rows.push((a.1.clone(), &a.0 - &qla::dot(&a.1, pref)));
+            }
+            Some(AffineMap { rows })
+        };
+        let pm = affine(&s0.0, &s1.0).zip(affine(&s0.1, &s1.1));
+        Some(vec![pm])
+    }
+
+    /// A point of `space` near the preference, moved at random inside it.
+    fn choose(&mut self, space: &Affine, pref: &[Q], homogeneous: bool) -> Option<Vec<Q>> {
+        let mut t = space.project(pref);
+        let norm: f64 = if homogeneous {
+            pref.iter().map(|x| qla::to_f64(x).powi(2)).sum::<f64>().sqrt().max(1e-9) / self.scale
+        } else {
+            1.0
+        };
+        for ti in t.iter_mut() {
+            let r = self.random_small();
+            *ti += r * qla::approx(norm, 1_000_000);
+        }
+        let x = space.point(&t);
+        if homogeneous && x.iter().all(Zero::is_zero) {
+            // The preference projects to zero: take a random element of the subspace.
+            let t: Vec<Q> =
+                (0..space.basis.len()).map(|_| self.random_small() + Q::one()).collect();
+            return Some(space.point(&t));
+        }
+        Some(x)
+    }
+
+    /// Solves the linear equations plus quadrics `|P|² = |M|²`.
+    fn solve_quadrics(
+        &mut self,
+        n: usize,
+        linear: &[(Vec<Q>, Q)],
+        quads: &[(AffineMap, AffineMap)],
+        pref: &[Q],
+        homogeneous: bool,
+    ) -> Option<Vec<Q>> {
+        let mut linear = linear.to_vec();
+        let mut rest: Vec<&(AffineMap, AffineMap)> = Vec::new();
+        for q in quads {
+            // |P|² = |M|² where P and M keep a fixed direction factorises over ℚ when the
+            // product of the lengths of the directions is rational: p·|dP|² = ±m·|dP||dM|
+            // (a circle tangent to a line with a rational unit normal…). The sign is the
+            // preference's side.
+            if let Some(rows) = factorise(q, pref) {
+                linear.extend(rows);
+                continue;
+            }
+            // Quadrics with the same quadratic part differ by a linear equation (two circles
+            // through a point, two points on a circle…).
+            if let Some(first) = rest.first() {
+                let h = q.0.quadratic_form(&q.1, n);
+                let h0 = first.0.quadratic_form(&first.1, n);
+                if let Some(lambda) = proportional(&h, &h0) {
+                    let (g, c) = q.0.linear_part(&q.1, n);
+                    let (g0, c0) = first.0.linear_part(&first.1, n);
+                    let row: Vec<Q> = g.iter().zip(&g0).map(|(a, b)| a - &(&lambda * b)).collect();
+                    let rhs = -(c - &lambda * &c0);
+                    linear.push((row, rhs));
+                    continue;
+                }
+            }
+            rest.push(q);
+        }
+        let space = qla::solve(n, &linear)?;
+        let Some((p, m)) = rest.first() else {
+            return self.choose(&space, pref, homogeneous);
+        };
+        // P = R·M for a rational orthogonal R near the preference, a few tries.
+        for attempt in 0..6 {
+            let k = p.rows.len().max(m.rows.len());
+            let r = self.orthogonal_near(p, m, pref, k, attempt);
+            let mut sys = linear.clone();
+            for i in 0..k {
+                // P_i(x) − Σ_j R_ij M_j(x) = 0
+                let mut row = p.rows.get(i).map_or(vec![Q::zero(); n], |r| r.0.clone());
+                let mut rhs = p.rows.get(i).map_or(Q::zero(), |r| -r.1.clone());
+                for (j, mrow) in m.rows.iter().enumerate() {
+                    for (a, b) in row.iter_mut().zip(&mrow.0) {
+                        *a -= &r[i][j] * b;
+                    }
+                    rhs += &r[i][j] * &mrow.1;
+                }
+                sys.push((row, rhs));
+            }
+            if let Some(sub) = qla::solve(n, &sys) {
+                if homogeneous && sub.basis.is_empty() {
+                    continue;
+                }
+                let x = self.choose(&sub, pref, homogeneous)?;
+                if rest.iter().all(|(p2, m2)| p2.norm2(&x) == m2.norm2(&x)) {
+                    return Some(x);
+                }
+            }
+        }
+        // A one-parameter family: intersect with the quadric, if the roots are rational.
+        self.univariate(&space, p, m, pref, homogeneous)
+            .filter(|x| rest.iter().all(|(p2, m2)| p2.norm2(x) == m2.norm2(x)))
+    }
+
+    fn univariate(
+        &mut self,
+        space: &Affine,
+        p: &AffineMap,
+        m: &AffineMap,
+        pref: &[Q],
+        homogeneous: bool,
+    ) -> Option<Vec<Q>> {
+        let (x0, w) = match (space.basis.len(), homogeneous) {
+            (1, false) => (space.x0.clone(), space.basis[0].clone()),
+            (2, true) => (space.basis[0].clone(), space.basis[1].clone()),
+            (1, true) => {
+                let x = space.basis[0].clone();
+                return (p.norm2(&x) == m.norm2(&x)).then_some(x);
+            }
+            (0, false) => {
+                let x = space.x0.clone();
+                return (p.norm2(&x) == m.norm2(&x)).then_some(x);
+            }
+            _ => return None,
+        };
+        // |P(x0 + t w)|² − |M(x0 + t w)|² = α t² + β t + γ.
+        let coef = |map: &AffineMap| {
+            let a: Vec<Q> = map.rows.iter().map(|(g, _)| qla::dot(g, &w)).collect();
+            let b: Vec<Q> = map.rows.iter().map(|(g, c)| qla::dot(g, &x0) + c).collect();
+            (qla::dot(&a, &a), qla::dot(&a, &b) * Q::from_integer(2.into()), qla::dot(&b, &b))
+        };
+        let (pa, pb, pc) = coef(p);
+        let (ma, mb, mc) = coef(m);
+        let (a, b, c) = (pa - ma, pb - mb, pc - mc);
+        let t_pref = {
+            let ww = qla::dot(&w, &w);
+            let d: Vec<Q> = pref.iter().zip(&x0).map(|(u, v)| u - v).collect();
+            if ww.is_zero() { Q::zero() } else { qla::dot(&d, &w) / ww }
+        };
+        let roots: Vec<Q> = if a.is_zero() {
+            if b.is_zero() {
+                return None;
+            }
+            vec![-c / b]
+        } else {
+            let disc = &b * &b - Q::from_integer(4.into()) * &a * &c;
+            let s = qla::sqrt(&disc)?;
+            let two_a = &a * Q::from_integer(2.into());
+            vec![(-&b + &s) / &two_a, (-&b - &s) / &two_a]
+        };
+        let t = roots.into_iter().min_by_key(|t| {
+            let d = qla::to_f64(&(t - &t_pref)).abs();
+            (d * 1e9) as u64
+        })?;
+        Some(x0.iter().zip(&w).map(|(x, wi)| x + &t * wi).collect())
+    }
+
+    /// A rational orthogonal `k×k` matrix mapping `M(pref)`'s direction near `P(pref)`'s.
+    fn orthogonal_near(
+        &mut self,
+        p: &AffineMap,
+        m: &AffineMap,
+        pref: &[Q],
+        k: usize,
+        attempt: usize,
+    ) -> Vec<Vec<Q>> {
+        let pv = p.eval_f64(pref, k);
+        let mv = m.eval_f64(pref, k);
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let (np, nm) = (norm(&pv), norm(&mv));
+        let jitter = 1e-3 * (1.0 + attempt as f64);
+        if k == 1 {
+            let same = pv[0] * mv[0] >= 0.0;
+            let s = if attempt.is_multiple_of(2) { same } else { !same };
+            return vec![vec![if s { Q::one() } else { -Q::one() }]];
+        }
+        let mut v: Vec<f64> = if np > 1e-12 && nm > 1e-12 {
+            pv.iter().zip(&mv).map(|(a, b)| a / np - b / nm).collect()
+        } else {
+            vec![0.0; k]
+        };
+        let tiny = norm(&v) < 1e-9;
+        for x in v.iter_mut() {
+            *x += jitter * (2.0 * self.rng.unit_f64() - 1.0);
+        }
+        let vq: Vec<Q> = v.iter().map(|x| qla::approx(*x, 1 << 24)).collect();
+        let h = qla::reflection(&vq).unwrap_or_else(|| identity(k));
+        if tiny {
+            // P ≈ M: a rotation near the identity, the product of two close reflections.
+            let h2 = qla::reflection(
+                &v.iter().map(|x| qla::approx(x + jitter, 1 << 24)).collect::<Vec<_>>(),
+            )
+            .unwrap_or_else(|| identity(k));
+            return qla::matmul(&h, &h2);
+        }
+        h
+    }
+}
+
+fn identity(k: usize) -> Vec<Vec<Q>> {
+    (0..k).map(|i| (0..k).map(|j| if i == j { Q::one() } else { Q::zero() }).collect()).collect()
+}
+
+/// `x ↦ (λ·x + λ0) d`: an affine map into a fixed direction `d`, if it is one.
+fn fixed_direction(map: &AffineMap) -> Option<(Vec<Q>, Vec<Q>, Q)> {
+    let i0 = map.rows.iter().position(|(g, c)| !c.is_zero() || g.iter().any(|x| !x.is_zero()))?;
+    let (g0, c0) = &map.rows[i0];
+    let mut d = Vec::with_capacity(map.rows.len());
+    for (g, c) in &map.rows {
+        // row = d_i · row0
+        let k = g.iter().zip(g0).chain(std::iter::once((c, c0))).find(|(_, b)| !b.is_zero())?;
+        let di = k.0 / k.1;
+        let same = g.iter().zip(g0).all(|(a, b)| *a == &di * b) && *c == &di * c0;
+        if !same {
+            return None;
+        }
+        d.push(di);
+    }
+    Some((d, g0.clone(), c0.clone()))
+}
+
+/// Linear equations equivalent to `|P|² = |M|²` (on the preference's branch) when `P` and
+/// `M` have fixed directions whose lengths have a rational product, or when one side is
+/// identically zero.
+fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>> {
+    let (p, m) = q;
+    let zero =
+        |map: &AffineMap| map.rows.iter().all(|(g, c)| c.is_zero() && g.iter().all(Zero::is_zero));
+    let as_rows = |map: &AffineMap| -> Vec<(Vec<Q>, Q)> {
+        map.rows.iter().map(|(g, c)| (g.clone(), -c.clone())).collect()
+    };
+    if zero(m) {
+        return Some(as_rows(p));
+    }
+    if zero(p) {
+        return Some(as_rows(m));
+    }
+    let (dp, lp, lp0) = fixed_direction(p)?;
+    let (dm, lm, lm0) = fixed_direction(m)?;
+    let (np, nm) = (qla::dot(&dp, &dp), qla::dot(&dm, &dm));
+    let l = qla::sqrt(&(&np * &nm))?;
+    // p(x)·|dP|² − σ·m(x)·L = 0 with σ = ±1 from the preference.
+    let pv = qla::dot(&lp, pref) + &lp0;
+    let mv = qla::dot(&lm, pref) + &lm0;
+    let plus = qla::to_f64(&(&pv * &np - &mv * &l)).abs();
+    let minus = qla::to_f64(&(&pv * &np + &mv * &l)).abs();
+    let sigma = if plus <= minus { Q::one() } else { -Q::one() };
+    let row: Vec<Q> = lp.iter().zip(&lm).map(|(a, b)| a * &np - &sigma * b * &l).collect();
+    let rhs = -(&lp0 * &np - &sigma * &lm0 * &l);
+    Some(vec![(row, rhs)])
+}
+
+/// `λ` with `a = λ b` (both nonzero), if any.
+fn proportional(a: &[Vec<Q>], b: &[Vec<Q>]) -> Option<Q> {
+    let mut lambda: Option<Q> = None;
+    for (ra, rb) in a.iter().zip(b) {
+        for (x, y) in ra.iter().zip(rb) {
+            match (x.is_zero(), y.is_zero()) {
+                (true, true) => {}
+                (false, false) => {
+                    let l = x / y;
+                    if lambda.as_ref().is_some_and(|m| *m != l) {
+                        return None;
+                    }
+                    lambda = Some(l);
+                }
+                _ => return None,
+            }
+        }
+    }
+    lambda
+}
+
+/// A gradient restricted to the columns of one entity.
+fn restrict<F: gcs_rank::Field>(
+    d: &Dual<F>,
+    local_cols: &[usize],
+    cols: &std::ops::Range<usize>,
+) -> Vec<F> {
+    let mut out = vec![F::zero(); cols.len()];
+    for (i, col) in local_cols.iter().enumerate() {
+        if cols.contains(col)
+            && let Some(g) = d.grad.get(i)
+        {
+            out[col - cols.start] = g.clone();
+        }
+    }
+    out
+}
+
+/// The value and gradient of an equation at a point.
+type Linearised = (Q, Vec<Q>);
+
+/// `x ↦ (g_i · x + c_i)_i`.
+#[derive(Clone, Debug)]
+struct AffineMap {
+    rows: Vec<(Vec<Q>, Q)>,
+}
+
+impl AffineMap {
+    fn norm2(&self, x: &[Q]) -> Q {
+        self.rows.iter().map(|(g, c)| qla::dot(g, x) + c).map(|v| &v * &v).sum()
+    }
+
+    fn eval_f64(&self, x: &[Q], k: usize) -> Vec<f64> {
+        let mut out: Vec<f64> =
+            self.rows.iter().map(|(g, c)| qla::to_f64(&(qla::dot(g, x) + c))).collect();
+        out.resize(k, 0.0);
+        out
+    }
+
+    /// The matrix `H` of the quadratic part of `|self|² − |other|²`.
+    fn quadratic_form(&self, other: &AffineMap, n: usize) -> Vec<Vec<Q>> {
+        let mut h = vec![vec![Q::zero(); n]; n];
+        for (sign, map) in [(Q::one(), self), (-Q::one(), other)] {
+            for (g, _) in &map.rows {
+                for i in 0..n {
+                    for j in 0..n {
+                        h[i][j] += &sign * &g[i] * &g[j];
+                    }
+                }
+            }
+        }
+        h
+    }
+
+    /// The linear part `g·x` and constant `c` of `|self|² − |other|²`.
+    fn linear_part(&self, other: &AffineMap, n: usize) -> (Vec<Q>, Q) {
+        let mut g = vec![Q::zero(); n];
+        let mut c = Q::zero();
+        for (sign, map) in [(Q::one(), self), (-Q::one(), other)] {
+            for (gi, ci) in &map.rows {
+                for (a, b) in g.iter_mut().zip(gi) {
+                    *a += &sign * b * ci * Q::from_integer(2.into());
+                }
+                c += &sign * ci * ci;
+            }
+        }
+        (g, c)
+    }
+}

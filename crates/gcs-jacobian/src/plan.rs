@@ -1,0 +1,149 @@
+//! Planning at the exact witness: which branch of each constraint holds (internal or external
+//! tangency, parallel or skew lines), and which of its candidate equations to keep so that it
+//! contributes exactly DOC rows independent at the witness.
+//!
+//! The plan is made once, over ℚ, and then the Jacobian is assembled in any field following
+//! it: every backend sees the same equations, which is what lets a modular rank be certified
+//! against the rational rows.
+
+use gcs_model::{ConstraintIdx, ConstraintKind, Shape, System};
+use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, SparseRow};
+
+use crate::dual::Dual;
+use crate::equations::{self, Local};
+use crate::error::JacobianError;
+use crate::layout::Layout;
+
+/// The branch and the kept equations of one constraint.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ConstraintPlan {
+    /// The variant of its equations that holds at the witness.
+    pub variant: usize,
+    /// Indices of the candidate equations kept (DOC of them).
+    pub rows: Vec<usize>,
+    /// Whether the kept rows are independent at the witness (false: the constraint is
+    /// singular there, e.g. a distance between coincident points).
+    pub regular: bool,
+}
+
+/// A plan for every constraint, in file order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Plan {
+    /// One entry per constraint.
+    pub constraints: Vec<ConstraintPlan>,
+}
+
+/// Why a configuration is not a witness of a system.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Unsatisfied {
+    /// A parameter-free constraint does not hold.
+    Constraint(ConstraintIdx),
+    /// A distance between lines or planes that are not parallel.
+    NotParallel(ConstraintIdx),
+}
+
+pub(crate) fn grad_row<F: Field>(d: &Dual<F>, cols: Option<&[usize]>) -> SparseRow<F> {
+    let entries = d
+        .grad
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| !g.is_zero())
+        .map(|(i, g)| (cols.map_or(i, |c| c[i]), g.clone()))
+        .collect();
+    SparseRow::from_entries(entries)
+}
+
+/// Whether a configuration satisfies the parameter-free constraints of a system exactly, and
+/// the plan if it does.
+pub fn plan(
+    system: &System,
+    layout: &Layout,
+    witness: &[BigRational],
+    sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<BigRational>>,
+) -> Result<Result<Plan, Unsatisfied>, JacobianError> {
+    let mut out = Vec::with_capacity(system.constraints().len());
+    for ci in system.constraint_indices() {
+        let c = system.constraint(ci);
+        let base = system.constraint_base_entities(ci);
+        let local = Local::new(system, layout, &base, witness);
+        // Metric distances between lines or planes need them parallel (2D lines, planes) or
+        // choose their formula (3D lines).
+        let mut variant = None;
+        if c.kind == ConstraintKind::Distance
+            && matches!(c.shape, Shape::LineLine(..) | Shape::PlanePlane(..))
+        {
+            let parallel = equations::parallel_at(system, c.shape, &local);
+            if equations::variants(system, c) == 2 {
+                variant = Some(usize::from(parallel));
+            } else if !parallel {
+                return Ok(Err(Unsatisfied::NotParallel(ci)));
+            } else {
+                variant = Some(0);
+            }
+        }
+        let variant = match variant {
+            Some(v) => v,
+            None => {
+                let mut found = None;
+                for v in 0..equations::variants(system, c) {
+                    let cand = equations::candidates(system, c, v, &local, sketch);
+                    if !cand.exact || cand.rows.iter().all(|r| r.value.is_zero()) {
+                        found = Some(v);
+                        break;
+                    }
+                }
+                match found {
+                    Some(v) => v,
+                    None => return Ok(Err(Unsatisfied::Constraint(ci))),
+                }
+            }
+        };
+        let cand = equations::candidates(system, c, variant, &local, sketch);
+        out.push(select(layout, &base, &local, &cand.rows, c.doc));
+        out.last_mut().expect("just pushed").variant = variant;
+    }
+    Ok(Ok(Plan { constraints: out }))
+}
+
+/// Keeps `doc` candidate rows independent at the witness, modulo the internal rows of the
+/// entities involved; when there are not enough, fills up with the first dependent ones and
+/// marks the constraint singular.
+fn select(
+    layout: &Layout,
+    base: &[gcs_model::EntityIdx],
+    local: &Local<'_, BigRational>,
+    rows: &[Dual<BigRational>],
+    doc: usize,
+) -> ConstraintPlan {
+    let n = local.nvars();
+    let mut ech = Echelon::new(n, EchelonOptions::default());
+    // Internal rows of the local entities, over local variables.
+    for &e in base {
+        if let Some(repr) = layout.repr(e) {
+            for r in equations::internal_rows(repr, local.coords(e)) {
+                ech.insert(grad_row(&r, None));
+            }
+        }
+    }
+    let mut kept = Vec::new();
+    let mut dependent = Vec::new();
+    for (i, r) in rows.iter().enumerate() {
+        if kept.len() == doc {
+            break;
+        }
+        if ech.insert(grad_row(r, None)).is_independent() {
+            kept.push(i);
+        } else {
+            dependent.push(i);
+        }
+    }
+    let regular = kept.len() == doc;
+    for i in dependent {
+        if kept.len() >= doc {
+            break;
+        }
+        kept.push(i);
+    }
+    kept.sort_unstable();
+    ConstraintPlan { variant: 0, rows: kept, regular }
+}
