@@ -71,6 +71,29 @@ enum Command {
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
     },
+    /// Print a generated model of a family of growing size (the benchmark families) as RON.
+    Generate {
+        /// The family: `rectangles` (N fixed CAD rectangles), `laman` (a random rigid 2D bar
+        /// framework on N points), `sphere` (a random triangulated sphere on N points, 3D).
+        #[arg(value_enum)]
+        family: Family,
+        /// The size.
+        size: usize,
+        /// Seed of the random families.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+}
+
+/// Generated families.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Family {
+    /// Fully constrained CAD rectangles with Fix, Horizontal, Vertical and two dimensions.
+    Rectangles,
+    /// A random 2D Laman graph (Henneberg moves) as a bar framework.
+    Laman,
+    /// A random triangulated sphere as a 3D bar framework.
+    Sphere,
 }
 
 /// Arithmetic backends.
@@ -120,6 +143,17 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
             analyze::run(&paths, &analyze::Settings { backend, seed, format })
+        }
+        Command::Generate { family, size, seed } => {
+            let system = match family {
+                Family::Rectangles => gcs_model::generate::rectangles(size),
+                Family::Laman => gcs_model::generate::laman(size, seed),
+                Family::Sphere => gcs_model::generate::triangulated_sphere(size, seed),
+            };
+            let mut out = batch::Out::new();
+            out.line(system.to_ron().trim_end());
+            out.flush();
+            ExitCode::SUCCESS
         }
     }
 }

@@ -85,7 +85,17 @@ impl<F: Field> Dual<F> {
 fn zip_grad<F: Field>(a: &[F], b: &[F], f: impl Fn(&F, &F) -> F) -> Vec<F> {
     let n = a.len().max(b.len());
     let zero = F::zero();
-    (0..n).map(|i| f(a.get(i).unwrap_or(&zero), b.get(i).unwrap_or(&zero))).collect()
+    (0..n)
+        .map(|i| {
+            let (x, y) = (a.get(i).unwrap_or(&zero), b.get(i).unwrap_or(&zero));
+            match (x.is_zero(), y.is_zero()) {
+                (true, true) => F::zero(),
+                // f is addition or subtraction: f(x, 0) = x.
+                (false, true) => x.clone(),
+                _ => f(x, y),
+            }
+        })
+        .collect()
 }
 
 impl<F: Field> Add for &Dual<F> {
@@ -106,7 +116,23 @@ impl<F: Field> Mul for &Dual<F> {
     type Output = Dual<F>;
     fn mul(self, rhs: &Dual<F>) -> Dual<F> {
         let (a, b) = (&self.value, &rhs.value);
-        let grad = zip_grad(&self.grad, &rhs.grad, |ga, gb| ga.mul(b).add(&a.mul(gb)));
+        let n = self.grad.len().max(rhs.grad.len());
+        let zero = F::zero();
+        let (a_zero, b_zero) = (a.is_zero(), b.is_zero());
+        // Product rule, skipping the zero terms (exact big rationals make every operation
+        // costly, and Jacobians are mostly zeros).
+        let grad = (0..n)
+            .map(|i| {
+                let ga = self.grad.get(i).unwrap_or(&zero);
+                let gb = rhs.grad.get(i).unwrap_or(&zero);
+                match (ga.is_zero() || b_zero, gb.is_zero() || a_zero) {
+                    (true, true) => F::zero(),
+                    (false, true) => ga.mul(b),
+                    (true, false) => a.mul(gb),
+                    (false, false) => ga.mul(b).add(&a.mul(gb)),
+                }
+            })
+            .collect();
         Dual { value: a.mul(b), grad }
     }
 }

@@ -76,6 +76,28 @@ impl<'a, F: Field> Local<'a, F> {
         }
     }
 
+    /// The normal `(a, b)` of a 2D line or segment (without computing its offset).
+    pub(crate) fn normal2(&self, e: EntityIdx) -> [Dual<F>; 2] {
+        match self.system.segment_points(e) {
+            Some((p, q)) => {
+                let (p, q) = (self.coords(p), self.coords(q));
+                [&p[1] - &q[1], &q[0] - &p[0]]
+            }
+            None => {
+                let c = self.coords(e);
+                [c[0].clone(), c[1].clone()]
+            }
+        }
+    }
+
+    /// The direction `d` of a 3D line or segment (without computing its moment).
+    pub(crate) fn direction3(&self, e: EntityIdx) -> Vec<Dual<F>> {
+        match self.system.segment_points(e) {
+            Some((p, q)) => v::sub(self.coords(q), self.coords(p)),
+            None => self.coords(e)[0..3].to_vec(),
+        }
+    }
+
     /// A 3D line or segment in Plücker coordinates `(d, m)`.
     pub(crate) fn line3(&self, e: EntityIdx) -> (Vec<Dual<F>>, Vec<Dual<F>>) {
         match self.system.segment_points(e) {
@@ -196,21 +218,15 @@ pub(crate) fn candidates<F: Field>(
         (K::Angle, Shape::LineLine(p, q)) if !d3 => {
             // Oriented angle between normals: its gradient is proportional to
             // cross0·∇dot − dot0·∇cross, regular at every angle (0° and 90° included).
-            let [a1, b1, _] = l.line2(p);
-            let [a2, b2, _] = l.line2(q);
-            let (n1, n2) = ([a1, b1], [a2, b2]);
+            let (n1, n2) = (l.normal2(p), l.normal2(q));
             let dot = v::dot(&n1, &n2);
             let cross = v::cross2(&n1, &n2);
             let row = &dot.scale(&cross.value) - &cross.scale(&dot.value);
             measure(row)
         }
-        (K::Angle, Shape::LineLine(p, q)) => {
-            let (d1, _) = l.line3(p);
-            let (d2, _) = l.line3(q);
-            measure(cosine(&d1, &d2))
-        }
+        (K::Angle, Shape::LineLine(p, q)) => measure(cosine(&l.direction3(p), &l.direction3(q))),
         (K::Angle, Shape::LinePlane { line, plane }) => {
-            let (d, _) = l.line3(line);
+            let d = l.direction3(line);
             let (n, _) = l.plane(plane);
             measure(cosine(&d, &n))
         }
@@ -227,21 +243,19 @@ pub(crate) fn candidates<F: Field>(
         (K::Parallel, Shape::LineLine(p, q)) => exact(v::cross3(&l.line3(p).0, &l.line3(q).0)),
         (K::Parallel, Shape::PlanePlane(p, q)) => exact(v::cross3(&l.plane(p).0, &l.plane(q).0)),
         (K::Parallel, Shape::LinePlane { line, plane }) => {
-            exact(vec![v::dot(&l.line3(line).0, &l.plane(plane).0)])
+            exact(vec![v::dot(&l.direction3(line), &l.plane(plane).0)])
         }
         (K::Perpendicular, Shape::LineLine(p, q)) if !d3 => {
-            let [a1, b1, _] = l.line2(p);
-            let [a2, b2, _] = l.line2(q);
-            exact(vec![v::dot(&[a1, b1], &[a2, b2])])
+            exact(vec![v::dot(&l.normal2(p), &l.normal2(q))])
         }
         (K::Perpendicular, Shape::LineLine(p, q)) => {
-            exact(vec![v::dot(&l.line3(p).0, &l.line3(q).0)])
+            exact(vec![v::dot(&l.direction3(p), &l.direction3(q))])
         }
         (K::Perpendicular, Shape::PlanePlane(p, q)) => {
             exact(vec![v::dot(&l.plane(p).0, &l.plane(q).0)])
         }
         (K::Perpendicular, Shape::LinePlane { line, plane }) => {
-            exact(v::cross3(&l.line3(line).0, &l.plane(plane).0))
+            exact(v::cross3(&l.direction3(line), &l.plane(plane).0))
         }
         (K::Incident, Shape::PointLine { point, line }) if !d3 => {
             let x = l.point(point);
@@ -315,8 +329,14 @@ pub(crate) fn candidates<F: Field>(
             let across = v::cross2(&[la, lb], &d);
             exact(vec![on_axis, across])
         }
-        (K::Horizontal, Shape::Line(e)) => exact(vec![l.line2(e)[0].clone()]),
-        (K::Vertical, Shape::Line(e)) => exact(vec![l.line2(e)[1].clone()]),
+        (K::Horizontal, Shape::Line(e)) => {
+            let [a, _] = l.normal2(e);
+            exact(vec![a])
+        }
+        (K::Vertical, Shape::Line(e)) => {
+            let [_, b] = l.normal2(e);
+            exact(vec![b])
+        }
         (K::Fix, Shape::Single(e)) => {
             let mut rows = Vec::new();
             for b in system.base_entities(e) {
@@ -346,6 +366,10 @@ pub(crate) fn candidates<F: Field>(
         // shapes handled above.
         _ => exact(Vec::new()),
     }
+}
+
+fn system_is_3d<F: Field>(l: &Local<'_, F>) -> bool {
+    l.system.dim() == Dim::Three
 }
 
 /// The cosine of the angle between two vectors, as a ratio row.
@@ -441,6 +465,16 @@ pub(crate) fn split<F: Field>(
             let (p1, q1) = l.segment(s);
             let (p2, q2) = l.segment(t);
             Some((v::sub(&q1, &p1), v::sub(&q2, &p2)))
+        }
+        // u·v = 0 is |u + v|² = |u − v|² (polarisation): quadratic in a point shared by two
+        // perpendicular segments (Thales).
+        (K::Perpendicular, Shape::LineLine(p, q)) => {
+            let (u, w) = if system_is_3d(l) {
+                (l.direction3(p), l.direction3(q))
+            } else {
+                (l.normal2(p).to_vec(), l.normal2(q).to_vec())
+            };
+            Some((v::add(&u, &w), v::sub(&u, &w)))
         }
         _ => None,
     }

@@ -67,6 +67,10 @@ struct Placer<'a> {
     rng: SplitMix64,
     scale: f64,
     noise: f64,
+    /// The entity being placed.
+    current: Option<EntityIdx>,
+    /// For each point, the other endpoints of the segments it is an endpoint of.
+    partners: Vec<Vec<EntityIdx>>,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -143,6 +147,13 @@ pub(crate) fn place(
         }
         bases.push(b);
     }
+    let mut partners = vec![Vec::new(); nent];
+    for e in system.entity_indices() {
+        if let Some((a, b)) = system.segment_points(e) {
+            partners[a.index()].push(b);
+            partners[b.index()].push(a);
+        }
+    }
     let attempts = if nent <= 2000 { 8 } else { 2 };
     let mut rng = SplitMix64::new(options.seed ^ 0x5EED);
     let mut failure = None;
@@ -162,6 +173,8 @@ pub(crate) fn place(
             rng: SplitMix64::new(options.seed.wrapping_add(attempt as u64)),
             scale,
             noise: options.noise,
+            current: None,
+            partners: partners.clone(),
         };
         p.choose_variants();
         match p.run(&tiebreak) {
@@ -270,12 +283,70 @@ impl Placer<'_> {
         }
     }
 
+    /// Linear equations making the normal of a 2D line or a plane parallel to a rational
+    /// unit vector near the preference's normal.
+    fn rational_normal(&mut self, pref: &[Q], n: usize) -> Vec<(Vec<Q>, Q)> {
+        let k = if n == 3 { 2 } else { 3 };
+        let w: Vec<f64> = pref[0..k].iter().map(qla::to_f64).collect();
+        let jitter: Vec<f64> = (0..k).map(|_| 1e-3 * (2.0 * self.rng.unit_f64() - 1.0)).collect();
+        let w: Vec<f64> = w.iter().zip(&jitter).map(|(a, b)| a + b).collect();
+        let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
+        let row = |i: usize, j: usize| {
+            // normal_i u_j − normal_j u_i = 0
+            let mut g = vec![Q::zero(); n];
+            g[i] = u[j].clone();
+            g[j] = -u[i].clone();
+            (g, Q::zero())
+        };
+        if k == 2 {
+            vec![row(0, 1)]
+        } else {
+            // Two of the three components of n × u, independent since u ≠ 0.
+            let big = (0..3)
+                .max_by(|a, b| qla::to_f64(&u[*a]).abs().total_cmp(&qla::to_f64(&u[*b]).abs()))
+                .unwrap_or(2);
+            (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
+        }
+    }
+
+    /// Linear equations putting `x − other` along a rational unit vector near the direction
+    /// from `other` to the preference `pref`.
+    fn rational_direction(&mut self, pref: &[Q], other: &[Q]) -> Vec<(Vec<Q>, Q)> {
+        let n = pref.len();
+        let w: Vec<f64> = pref
+            .iter()
+            .zip(other)
+            .map(|(a, b)| {
+                qla::to_f64(a) - qla::to_f64(b)
+                    + 1e-3 * self.scale * (2.0 * self.rng.unit_f64() - 1.0)
+            })
+            .collect();
+        let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
+        // (x − o)_i u_j − (x − o)_j u_i = 0
+        let row = |i: usize, j: usize| {
+            let mut g = vec![Q::zero(); n];
+            g[i] = u[j].clone();
+            g[j] = -u[i].clone();
+            let rhs = &other[i] * &u[j] - &other[j] * &u[i];
+            (g, rhs)
+        };
+        if n == 2 {
+            vec![row(0, 1)]
+        } else {
+            let big = (0..3)
+                .max_by(|a, b| qla::to_f64(&u[*a]).abs().total_cmp(&qla::to_f64(&u[*b]).abs()))
+                .unwrap_or(2);
+            (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
+        }
+    }
+
     fn random_small(&mut self) -> Q {
         qla::approx(self.noise * self.scale * (2.0 * self.rng.unit_f64() - 1.0), 1_000_000)
     }
 
     /// Places `e` under its ready constraints; on success writes its coordinates.
     fn place_one(&mut self, e: EntityIdx, ready: &[ConstraintIdx]) -> bool {
+        self.current = Some(e);
         let cols = self.layout.columns(e);
         let n = cols.len();
         let homogeneous = self.layout.repr(e).is_some_and(Repr::homogeneous);
@@ -285,11 +356,12 @@ impl Placer<'_> {
         let delta: Vec<Q> =
             (0..n).map(|_| self.random_small() + Q::new(1.into(), 7.into())).collect();
         let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
+        let _ = &mut linear;
         let mut quads: Vec<(AffineMap, AffineMap)> = Vec::new();
         for &ci in ready {
             let variant = self.variant[ci.index()];
             let (f0, f1) = self.evaluate(e, ci, variant, &pref, &delta);
-            let split = self.split_maps(e, ci, variant, &pref, &delta);
+            let mut split = None;
             for (k, (r0, r1)) in f0.iter().zip(&f1).enumerate() {
                 let g = &r0.1;
                 let predicted = &r0.0 + &qla::dot(g, &delta);
@@ -301,7 +373,12 @@ impl Placer<'_> {
                         continue;
                     }
                     linear.push((g.clone(), qla::dot(g, &pref) - &r0.0));
-                } else if let Some(Some(maps)) = split.as_ref().and_then(|s| s.get(k).cloned()) {
+                } else if let Some(Some(maps)) = {
+                    if split.is_none() {
+                        split = Some(self.split_maps(e, ci, variant, &pref, &delta));
+                    }
+                    split.as_ref().and_then(|s| s.as_ref()).and_then(|s| s.get(k).cloned())
+                } {
                     quads.push(maps);
                 } else {
                     return false;
@@ -321,32 +398,72 @@ impl Placer<'_> {
             quads.push((plus, minus));
         }
         let Some(space) = qla::solve(n, &linear) else { return false };
+        // A free line or plane gets a normal of rational length (a Pythagorean direction near
+        // the preference): tangencies to it then have rational solutions.
+        let repr = self.layout.repr(e);
+        // A free endpoint of a segment whose other end is placed goes at a rational distance
+        // from it (a rational unit direction): tangencies and equal lengths involving the
+        // segment then have rational solutions.
+        if matches!(repr, Some(Repr::Point2 | Repr::Point3)) && space.basis.len() == n {
+            let placed_partner =
+                self.partners[e.index()].iter().copied().find(|o| self.placed[o.index()]);
+            if let Some(o) = placed_partner {
+                let other: Vec<Q> = self.coords[self.layout.columns(o)].to_vec();
+                let rows = self.rational_direction(&pref, &other);
+                let mut with = linear.clone();
+                with.extend(rows);
+                if qla::solve(n, &with).is_some() {
+                    linear = with;
+                }
+            }
+        }
+        if matches!(repr, Some(Repr::Line2 | Repr::Plane)) && normal_is_free(&space, n) {
+            let rows = self.rational_normal(&pref, n);
+            let mut with = linear.clone();
+            with.extend(rows.iter().cloned());
+            if let Some(snapped) = qla::solve(n, &with)
+                && snapped.basis.len() + rows.len() == space.basis.len()
+            {
+                linear = with;
+            }
+        }
+        let Some(space) = qla::solve(n, &linear) else { return false };
+        let linear_only = quads.is_empty();
         let chosen = if quads.is_empty() {
             self.choose(&space, &pref, homogeneous)
         } else {
             self.solve_quadrics(n, &linear, &quads, &pref, homogeneous)
         };
         let Some(x) = chosen else { return false };
-        if homogeneous && x.iter().all(Zero::is_zero) {
+        if repr.is_some_and(|r| degenerate(r, &x)) {
             return false;
+        }
+        // A segment must keep two distinct points.
+        for o in &self.partners[e.index()] {
+            if self.placed[o.index()] && self.coords[self.layout.columns(*o)] == x[..] {
+                return false;
+            }
         }
         let old: Vec<Q> = self.coords[cols.clone()].to_vec();
         for (col, v) in cols.clone().zip(&x) {
             self.coords[col] = v.clone();
         }
-        // Exact check of every ready equation.
-        let ok = ready.iter().all(|&ci| {
-            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
-            let none = |_: EntityIdx| None;
-            let sketch = |b: EntityIdx| crate::sketch::sketch_coords(self.system, b);
-            let c = self.system.constraint(ci);
-            let cand = if c.kind == ConstraintKind::Fix {
-                equations::candidates(self.system, c, self.variant[ci.index()], &local, &sketch)
-            } else {
-                equations::candidates(self.system, c, self.variant[ci.index()], &local, &none)
-            };
-            cand.rows.iter().all(|r| r.value.is_zero())
-        });
+        // Exact check of every ready equation (a solution of linear equations checked linear
+        // satisfies them by construction).
+        let ok = linear_only
+            || ready.iter().all(|&ci| {
+                let local =
+                    Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
+                let none = |_: EntityIdx| None;
+                let sketch = |b: EntityIdx| crate::sketch::sketch_coords(self.system, b);
+                let c = self.system.constraint(ci);
+                let cand = if c.kind == ConstraintKind::Fix {
+                    equations::candidates(self.system, c, self.variant[ci.index()], &local, &sketch)
+                } else {
+                    equations::candidates(self.system, c, self.variant[ci.index()], &local, &none)
+                };
+                cand.rows.iter().all(|r| r.value.is_zero())
+            });
         if !ok {
             for (col, v) in cols.zip(old) {
                 self.coords[col] = v;
@@ -514,6 +631,10 @@ impl Placer<'_> {
                     continue;
                 }
                 let x = self.choose(&sub, pref, homogeneous)?;
+                let repr = self.layout.repr(self.current?);
+                if repr.is_some_and(|r| degenerate(r, &x)) {
+                    continue;
+                }
                 if rest.iter().all(|(p2, m2)| p2.norm2(&x) == m2.norm2(&x)) {
                     return Some(x);
                 }
@@ -590,32 +711,107 @@ impl Placer<'_> {
         let mv = m.eval_f64(pref, k);
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
         let (np, nm) = (norm(&pv), norm(&mv));
-        let jitter = 1e-3 * (1.0 + attempt as f64);
         if k == 1 {
             let same = pv[0] * mv[0] >= 0.0;
             let s = if attempt.is_multiple_of(2) { same } else { !same };
             return vec![vec![if s { Q::one() } else { -Q::one() }]];
         }
-        let mut v: Vec<f64> = if np > 1e-12 && nm > 1e-12 {
-            pv.iter().zip(&mv).map(|(a, b)| a / np - b / nm).collect()
-        } else {
-            vec![0.0; k]
+        // A rotation (det +1: the product of two Householder reflections, exactly orthogonal
+        // for rational vectors) taking M's direction near P's. Rotations, not single
+        // reflections: for the Plücker relation |d + m|² = |d − m|² a reflection would force
+        // the direction into a plane; a rotation gives the Cayley parametrisation.
+        let jitter = 1e-3 * (1.0 + attempt as f64);
+        let mut random = |scale: f64| -> Vec<f64> {
+            (0..k).map(|_| scale * (2.0 * self.rng.unit_f64() - 1.0)).collect()
         };
-        let tiny = norm(&v) < 1e-9;
-        for x in v.iter_mut() {
-            *x += jitter * (2.0 * self.rng.unit_f64() - 1.0);
+        let a: Vec<f64> = random(1.0);
+        let noise = random(jitter);
+        let aq: Vec<Q> = a.iter().map(|x| qla::approx(*x, 1 << 20)).collect();
+        let ha = qla::reflection(&aq).unwrap_or_else(|| identity(k));
+        let (phat, mhat): (Vec<f64>, Vec<f64>) = if np > 1e-12 && nm > 1e-12 {
+            (pv.iter().map(|x| x / np).collect(), mv.iter().map(|x| x / nm).collect())
+        } else {
+            (vec![0.0; k], vec![0.0; k])
+        };
+        // u = H_a m̂; then H_b with b = u − p̂ maps u to p̂.
+        let haf: Vec<Vec<f64>> = ha.iter().map(|r| r.iter().map(qla::to_f64).collect()).collect();
+        let u: Vec<f64> =
+            haf.iter().map(|r| r.iter().zip(&mhat).map(|(x, y)| x * y).sum()).collect();
+        let mut b: Vec<f64> = u.iter().zip(&phat).map(|(x, y)| x - y).collect();
+        if norm(&b) < 1e-6 {
+            // H_a already does it: any b orthogonal to p̂ keeps it.
+            let r = random(1.0);
+            let dot: f64 = r.iter().zip(&phat).map(|(x, y)| x * y).sum();
+            b = r.iter().zip(&phat).map(|(x, y)| x - dot * y).collect();
         }
-        let vq: Vec<Q> = v.iter().map(|x| qla::approx(*x, 1 << 24)).collect();
-        let h = qla::reflection(&vq).unwrap_or_else(|| identity(k));
-        if tiny {
-            // P ≈ M: a rotation near the identity, the product of two close reflections.
-            let h2 = qla::reflection(
-                &v.iter().map(|x| qla::approx(x + jitter, 1 << 24)).collect::<Vec<_>>(),
-            )
-            .unwrap_or_else(|| identity(k));
-            return qla::matmul(&h, &h2);
+        let bq: Vec<Q> = b.iter().zip(&noise).map(|(x, n)| qla::approx(x + n, 1 << 24)).collect();
+        let hb = qla::reflection(&bq).unwrap_or_else(|| identity(k));
+        qla::matmul(&hb, &ha)
+    }
+}
+
+/// Whether coordinates describe a degenerate entity: a line or plane without normal or
+/// direction, a circle or sphere of radius zero.
+fn degenerate(repr: Repr, x: &[Q]) -> bool {
+    let zero = |xs: &[Q]| xs.iter().all(Zero::is_zero);
+    match repr {
+        Repr::Line2 => zero(&x[0..2]),
+        Repr::Line3 | Repr::Plane => zero(&x[0..3]),
+        Repr::Circle => x[2].is_zero(),
+        Repr::Sphere => x[3].is_zero(),
+        Repr::Point2 | Repr::Point3 => false,
+    }
+}
+
+/// Whether the normal of a line or plane (its first `n − 1` coordinates) can point anywhere in
+/// the solution space.
+fn normal_is_free(space: &Affine, n: usize) -> bool {
+    let k = n - 1;
+    let rows: Vec<(Vec<Q>, Q)> =
+        space.basis.iter().map(|v| (v[0..k].to_vec(), Q::zero())).collect();
+    // The rank of the normal parts of the basis: k minus the dimension of the solutions of
+    // the transposed system is awkward here; count independent rows by elimination.
+    rank(&rows, k) == k
+}
+
+fn rank(rows: &[(Vec<Q>, Q)], n: usize) -> usize {
+    match qla::solve(n, rows) {
+        // The solution set of the homogeneous system has dimension n − rank.
+        Some(s) => n - s.basis.len(),
+        None => n,
+    }
+}
+
+/// A rational unit vector near the direction of `w` (2D: tangent half-angle; 3D: inverse
+/// stereographic projection), `None` for a zero vector.
+fn rational_unit(w: &[f64], den: i64) -> Option<Vec<Q>> {
+    let norm = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if norm < 1e-300 {
+        return None;
+    }
+    let w: Vec<f64> = w.iter().map(|x| x / norm).collect();
+    let one = Q::one();
+    let two = Q::from_integer(2.into());
+    if w.len() == 2 {
+        // (cos θ, sin θ) = ((1 − t²), 2t)/(1 + t²), t = tan(θ/2); near θ = π use −t⁻¹ form.
+        let flip = w[0] < 0.0;
+        let (c, s) = if flip { (-w[0], -w[1]) } else { (w[0], w[1]) };
+        let t = qla::approx(s / (1.0 + c), den);
+        let d = &one + &t * &t;
+        let mut u = vec![(&one - &t * &t) / &d, &two * &t / &d];
+        if flip {
+            u = u.into_iter().map(|x| -x).collect();
         }
-        h
+        Some(u)
+    } else {
+        // Stereographic from the pole opposite to w's z sign.
+        let flip = w[2] < 0.0;
+        let z = if flip { -w[2] } else { w[2] };
+        let s = qla::approx(w[0] / (1.0 + z), den);
+        let t = qla::approx(w[1] / (1.0 + z), den);
+        let d = &one + &s * &s + &t * &t;
+        let zq = (&one - &s * &s - &t * &t) / &d;
+        Some(vec![&two * &s / &d, &two * &t / &d, if flip { -zq } else { zq }])
     }
 }
 

@@ -115,6 +115,10 @@ fn select(
     rows: &[Dual<BigRational>],
     doc: usize,
 ) -> ConstraintPlan {
+    if rows.len() == doc {
+        // Nothing to choose: the rows are the constraint's equations.
+        return ConstraintPlan { variant: 0, rows: (0..doc).collect(), regular: true };
+    }
     let n = local.nvars();
     let mut ech = Echelon::new(n, EchelonOptions::default());
     // Internal rows of the local entities, over local variables.

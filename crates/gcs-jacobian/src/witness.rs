@@ -60,7 +60,7 @@ pub struct WitnessOptions {
 
 impl Default for WitnessOptions {
     fn default() -> Self {
-        WitnessOptions { seed: 1, rounds: 2 }
+        WitnessOptions { seed: 1, rounds: 1 }
     }
 }
 
