@@ -203,6 +203,7 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     let options = AnalysisOptions {
         backend: settings.backend,
         witness: WitnessOptions { seed: settings.seed, ..WitnessOptions::default() },
+        ..AnalysisOptions::default()
     };
     for input in batch::expand(paths) {
         let (file, result) = match input {

@@ -4,13 +4,14 @@
 use gcs_jacobian::{
     Jacobian, JacobianError, Layout, RowOwner, Witness, WitnessOptions, find_witness, motions,
 };
-use gcs_model::{ConstraintIdx, System};
+use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{
     BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Proof, RowAnalysis, SparseRow,
     analyse_rows, analyse_rows_exact, float_rank_qr,
 };
 
 use crate::error::AnalysisError;
+use crate::wdec::{DecompositionNode, RemovalOrder, Statistics};
 
 /// The arithmetic the rank is decided in.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,11 +57,20 @@ pub struct AnalysisOptions {
     pub backend: Backend,
     /// The witness search (its seed is the report's seed).
     pub witness: WitnessOptions,
+    /// Whether to W-decompose every cluster (witness paper §5).
+    pub decompose: bool,
+    /// Which constraint the W-decomposition tries to remove first.
+    pub removal_order: RemovalOrder,
 }
 
 impl Default for AnalysisOptions {
     fn default() -> Self {
-        AnalysisOptions { backend: Backend::Exact, witness: WitnessOptions::default() }
+        AnalysisOptions {
+            backend: Backend::Exact,
+            witness: WitnessOptions::default(),
+            decompose: false,
+            removal_order: RemovalOrder::default(),
+        }
     }
 }
 
@@ -77,6 +87,17 @@ pub struct Redundancy {
     /// the constraint itself), in file order. Deleting any one of them, or the constraint,
     /// removes this dependency.
     pub spanning_group: Vec<ConstraintIdx>,
+}
+
+/// A maximal rigid subsystem (format §2, `clusters`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Cluster {
+    /// Its entities, in file order (segments whose two points are in it included).
+    pub entities: Vec<EntityIdx>,
+    /// The constraints among its entities, in file order.
+    pub constraints: Vec<ConstraintIdx>,
+    /// Whether absolute constraints (`Fix`, `Horizontal`, `Vertical`) hold it in place.
+    pub grounded: bool,
 }
 
 /// The result of the witness analysis of one system (format §2).
@@ -106,6 +127,15 @@ pub struct Analysis {
     pub dof: usize,
     /// Redundant constraints in file order.
     pub redundant: Vec<Redundancy>,
+    /// The maximal rigid subsystems, sorted by first entity (file order).
+    pub clusters: Vec<Cluster>,
+    /// The arithmetic the clusters were decided in (`"rational"`, `"modp"` or `"float"`).
+    pub clusters_arithmetic: &'static str,
+    /// With [`AnalysisOptions::decompose`]: the W-decomposition of every cluster, in the order
+    /// of `clusters`.
+    pub decomposition: Option<Vec<DecompositionNode>>,
+    /// Counters of the W-decomposition.
+    pub decomposition_statistics: Option<Statistics>,
     /// For the float backend, the rank by faer's column-pivoted QR (when the matrix is small
     /// enough to be made dense), as a cross-check of the incremental elimination.
     pub float_qr_rank: Option<usize>,
@@ -307,6 +337,46 @@ pub fn analyze_at(
         r.spanning_group.sort();
         r.spanning_group.dedup();
     }
+    let ((clusters, decomposition), clusters_arithmetic) = match options.backend {
+        Backend::Float { tolerance } => (
+            clusters_in::<f64>(
+                system,
+                layout,
+                &witness,
+                EchelonOptions::float(tolerance),
+                options,
+            )?,
+            "float",
+        ),
+        Backend::Rational | Backend::Rug => (
+            clusters_in::<BigRational>(
+                system,
+                layout,
+                &witness,
+                EchelonOptions::default(),
+                options,
+            )?,
+            "rational",
+        ),
+        Backend::Exact if layout.ncols() <= EXACT_CLUSTER_LIMIT => (
+            clusters_in::<BigRational>(
+                system,
+                layout,
+                &witness,
+                EchelonOptions::default(),
+                options,
+            )?,
+            "rational",
+        ),
+        Backend::Exact | Backend::ModP => (
+            clusters_in::<ModP>(system, layout, &witness, EchelonOptions::default(), options)?,
+            "modp",
+        ),
+    };
+    let (decomposition, decomposition_statistics) = match decomposition {
+        Some((d, s)) => (Some(d), Some(s)),
+        None => (None, None),
+    };
     let unknowns = layout.ncols();
     let dof_absolute = unknowns - outcome.rank;
     Ok(Analysis {
@@ -322,8 +392,109 @@ pub fn analyze_at(
         trivial_motions: outcome.trivial,
         dof: dof_absolute.saturating_sub(outcome.trivial),
         redundant,
+        clusters,
+        clusters_arithmetic,
+        decomposition,
+        decomposition_statistics,
         float_qr_rank: outcome.float_qr_rank,
     })
+}
+
+/// Systems with at most this many unknowns get their clusters decided over ℚ by the exact
+/// backend; larger ones modulo the 61-bit prime (the rank stays proven either way).
+const EXACT_CLUSTER_LIMIT: usize = 3_000;
+
+/// Clusters, and the decomposition when asked for.
+type ClusterResult = (Vec<Cluster>, Option<(Vec<DecompositionNode>, Statistics)>);
+
+/// The clusters of the whole system (and their W-decompositions), computed in the field `F`.
+fn clusters_in<F: Field>(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+    echelon: EchelonOptions,
+    options: &AnalysisOptions,
+) -> Result<ClusterResult, AnalysisError> {
+    let jacobian: Jacobian<F> = witness.jacobian(system, layout)?;
+    let coords: Vec<F> = witness.coords_in()?;
+    let generators = motions::generators::<F>(system, layout, &coords)?;
+    let ctx = crate::rigid::Context::new(system, layout, &jacobian, generators, echelon);
+    let groups = ctx.constraint_groups(&jacobian);
+    let entities: Vec<EntityIdx> =
+        system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
+    let sub = crate::rigid::Subsystem { entities, groups };
+    let raw = crate::rigid::clusters(&ctx, &sub);
+    let decomposition = options.decompose.then(|| {
+        let mut d = crate::wdec::Decomposer::new(&ctx, coords, options.removal_order);
+        let mut trees = Vec::new();
+        // In the order of the finished clusters (sorted by first entity, segments added).
+        let finished = finish_clusters(system, &sub, raw.clone());
+        for c in &finished {
+            let groups = sub
+                .groups
+                .iter()
+                .filter(|g| match g.label {
+                    crate::rigid::Label::Constraint(ci) => c.constraints.contains(&ci),
+                    crate::rigid::Label::Virtual(_) => false,
+                })
+                .cloned()
+                .collect();
+            let entities: Vec<EntityIdx> =
+                c.entities.iter().copied().filter(|e| layout.repr(*e).is_some()).collect();
+            let csub = crate::rigid::Subsystem { entities, groups };
+            let mut tree = d.decompose(&csub);
+            // The root is the cluster itself, as reported.
+            tree.entities = c.entities.clone();
+            tree.constraints = c.constraints.clone();
+            trees.push(tree);
+        }
+        (trees, d.stats)
+    });
+    Ok((finish_clusters(system, &sub, raw), decomposition))
+}
+
+/// Adds segments to the clusters holding both their points (a segment in none gets its own),
+/// names the constraints, and sorts.
+pub(crate) fn finish_clusters<F>(
+    system: &System,
+    sub: &crate::rigid::Subsystem<F>,
+    raw: Vec<crate::rigid::RawCluster>,
+) -> Vec<Cluster> {
+    let mut out: Vec<Cluster> = raw
+        .into_iter()
+        .map(|r| {
+            let mut entities = r.entities.clone();
+            for e in system.entity_indices() {
+                if let Some((a, b)) = system.segment_points(e)
+                    && r.entities.contains(&a)
+                    && r.entities.contains(&b)
+                {
+                    entities.push(e);
+                }
+            }
+            entities.sort_unstable();
+            let constraints = r
+                .groups
+                .iter()
+                .filter_map(|g| match sub.groups[*g].label {
+                    crate::rigid::Label::Constraint(c) => Some(c),
+                    crate::rigid::Label::Virtual(_) => None,
+                })
+                .collect();
+            Cluster { entities, constraints, grounded: r.grounded }
+        })
+        .collect();
+    for e in system.entity_indices() {
+        if system.segment_points(e).is_some() && !out.iter().any(|c| c.entities.contains(&e)) {
+            let constraints = system
+                .constraint_indices()
+                .filter(|c| system.constraint(*c).shape.entities() == vec![e])
+                .collect();
+            out.push(Cluster { entities: vec![e], constraints, grounded: false });
+        }
+    }
+    out.sort_by(|a, b| a.entities.cmp(&b.entities));
+    out
 }
 
 fn row_owners(system: &System, layout: &Layout, witness: &Witness) -> Vec<RowOwner> {

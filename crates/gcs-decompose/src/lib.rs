@@ -28,6 +28,9 @@
 
 mod analysis;
 mod error;
+mod rigid;
+mod wdec;
 
-pub use analysis::{Analysis, AnalysisOptions, Backend, Redundancy, analyze, analyze_at};
+pub use analysis::{Analysis, AnalysisOptions, Backend, Cluster, Redundancy, analyze, analyze_at};
 pub use error::AnalysisError;
+pub use wdec::{DecompositionNode, RemovalOrder, Statistics};

@@ -18,7 +18,11 @@ fn independent(dim: u8, entities: &str, constraints: &str) {
     let s = system(dim, entities, constraints);
     for backend in [Backend::Exact, Backend::ModP] {
         for seed in [1, 2] {
-            let options = AnalysisOptions { backend, witness: WitnessOptions { seed, rounds: 1 } };
+            let options = AnalysisOptions {
+                backend,
+                witness: WitnessOptions { seed, rounds: 1 },
+                ..AnalysisOptions::default()
+            };
             let a = analyze(&s, &options).unwrap_or_else(|e| panic!("{constraints}: {e}"));
             assert!(a.redundant.is_empty(), "{dim}D {constraints}: redundant {:?}", a.redundant);
             assert_eq!(

@@ -76,3 +76,53 @@ pub fn assemble<F: Field>(
     }
     Jacobian { ncols: layout.ncols(), rows, owners }
 }
+
+/// The Jacobian row of a metric relation that is not a constraint of the system (a *virtual*
+/// constraint, such as the boundary of a rigid subsystem: witness paper §3.2): `kind` is
+/// `Distance` or `Angle`, `shape` the entities it binds, evaluated at `witness` (one value per
+/// column, in `F`). `None` when the relation does not apply there (a distance between lines
+/// that are not parallel, a kind that is not metric).
+pub fn relation_row<F: Field>(
+    system: &System,
+    layout: &Layout,
+    kind: gcs_model::ConstraintKind,
+    shape: gcs_model::Shape,
+    witness: &[F],
+) -> Option<SparseRow<F>> {
+    use gcs_model::{Constraint, ConstraintKind, Shape};
+    if !matches!(kind, ConstraintKind::Distance | ConstraintKind::Angle) {
+        return None;
+    }
+    let c = Constraint {
+        id: String::new(),
+        kind,
+        args: shape.entities(),
+        shape,
+        value: None,
+        doc: 1,
+        position: None,
+    };
+    let mut base = Vec::new();
+    for e in shape.entities() {
+        for b in system.base_entities(e) {
+            if !base.contains(&b) {
+                base.push(b);
+            }
+        }
+    }
+    let local = Local::new(system, layout, &base, witness);
+    let mut variant = 0;
+    if kind == ConstraintKind::Distance
+        && matches!(shape, Shape::LineLine(..) | Shape::PlanePlane(..))
+    {
+        let parallel = equations::parallel_at(system, shape, &local);
+        if equations::variants(system, &c) == 2 {
+            variant = usize::from(parallel);
+        } else if !parallel {
+            return None;
+        }
+    }
+    let none = |_: EntityIdx| None;
+    let cand = equations::candidates(system, &c, variant, &local, &none);
+    cand.rows.first().map(|r| grad_row(r, Some(&local.cols)))
+}

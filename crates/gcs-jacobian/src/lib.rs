@@ -53,6 +53,6 @@ mod witness;
 
 pub use dual::Dual;
 pub use error::JacobianError;
-pub use jacobian::{Jacobian, RowOwner, assemble};
+pub use jacobian::{Jacobian, RowOwner, assemble, relation_row};
 pub use layout::{Layout, Repr};
 pub use witness::{Witness, WitnessOptions, WitnessSource, find_witness};

@@ -1,0 +1,416 @@
+//! Maximal rigid subsystems (witness paper §4): the clusters.
+//!
+//! A set of entities is *rigid* when every motion the constraints allow moves it as a whole:
+//! restricted to its coordinates, every vector of `ker J` is a displacement. A *cluster* is a
+//! maximal rigid set.
+//!
+//! # How (Algorithm 1 of the paper, with the pivot exchanges of Algorithm 2)
+//!
+//! *Anchoring a reference* `R` — coordinates of the set whose displacements they pin, as many as
+//! the set's degree of rigidity `d = rank(T|S)` — means making `R`'s columns free in the
+//! reduced row echelon form of the Jacobian ([`gcs_rank::Echelon::make_free`], a pivot
+//! exchange per column, not a new elimination). A column is then *determined by `R`* when its
+//! row involves no other free column: whatever the motion, once `R` is held, it does not move.
+//! A set `S` is rigid exactly when, for such an `R ⊆ S`, every column of `S` is in `R` or
+//! determined by it; and the cluster of a rigid `S` is everything determined by `R`, extended
+//! one entity at a time while the degree of rigidity grows (a bar in 3D, with `d = 5`, grows to
+//! a triangle with `d = 6`), until no entity can join.
+//!
+//! *Absolute constraints* (`Fix`, `Horizontal`, `Vertical`) are not invariant under
+//! displacements. They are rewritten as relations to a *frame*, a virtual object whose `k`
+//! coordinates (3 in 2D, 6 in 3D) are a displacement of the ambient space: in the augmented
+//! Jacobian `[J | −J_abs·T]` every displacement is admitted, and the entities held by absolute
+//! constraints join the frame's cluster (the frame is never reported). See the proof sketch in
+//! [`Subsystem`]'s docs.
+//!
+//! Seeds are the constraints in file order: the entities of a constraint not yet inside one
+//! cluster, when rigid, grow into the cluster that contains them. Entities in no cluster at the
+//! end get a cluster of their own.
+
+use std::collections::HashMap;
+
+use gcs_jacobian::{Jacobian, Layout, RowOwner};
+use gcs_model::{ConstraintIdx, EntityIdx, System};
+use gcs_rank::{Echelon, EchelonOptions, Field, SparseRow};
+
+/// What a group of rows stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub(crate) enum Label {
+    /// A constraint of the system.
+    Constraint(ConstraintIdx),
+    /// A virtual relation (a boundary constraint), numbered by its creator.
+    Virtual(usize),
+}
+
+/// The rows of one constraint (or virtual relation) at the witness.
+#[derive(Clone, Debug)]
+pub(crate) struct Group<F> {
+    pub(crate) label: Label,
+    /// The entities with DOF it binds (segments replaced by their points).
+    pub(crate) entities: Vec<EntityIdx>,
+    pub(crate) rows: Vec<SparseRow<F>>,
+    /// Whether it is absolute (`Fix`, `Horizontal`, `Vertical`).
+    pub(crate) absolute: bool,
+}
+
+/// Everything the cluster search needs about the system at the witness, in a field.
+pub(crate) struct Context<'a, F> {
+    pub(crate) system: &'a System,
+    pub(crate) layout: &'a Layout,
+    /// The displacement generators, dense over the model's columns.
+    pub(crate) generators: Vec<Vec<F>>,
+    /// Entity-internal rows by entity.
+    pub(crate) internal: HashMap<EntityIdx, Vec<SparseRow<F>>>,
+    pub(crate) options: EchelonOptions,
+}
+
+impl<'a, F: Field> Context<'a, F> {
+    pub(crate) fn new(
+        system: &'a System,
+        layout: &'a Layout,
+        jacobian: &Jacobian<F>,
+        generators: Vec<Vec<F>>,
+        options: EchelonOptions,
+    ) -> Self {
+        let mut internal: HashMap<EntityIdx, Vec<SparseRow<F>>> = HashMap::new();
+        for (row, owner) in jacobian.rows.iter().zip(&jacobian.owners) {
+            if let RowOwner::Internal(e) = owner {
+                internal.entry(*e).or_default().push(row.clone());
+            }
+        }
+        Context { system, layout, generators, internal, options }
+    }
+
+    /// The groups of every constraint of the system, from the Jacobian.
+    pub(crate) fn constraint_groups(&self, jacobian: &Jacobian<F>) -> Vec<Group<F>> {
+        let mut groups: Vec<Group<F>> = self
+            .system
+            .constraint_indices()
+            .map(|c| Group {
+                label: Label::Constraint(c),
+                entities: self.system.constraint_base_entities(c),
+                rows: Vec::new(),
+                absolute: self.system.constraint(c).kind.is_absolute(),
+            })
+            .collect();
+        for (row, owner) in jacobian.rows.iter().zip(&jacobian.owners) {
+            if let RowOwner::Constraint(c) = owner {
+                groups[c.index()].rows.push(row.clone());
+            }
+        }
+        groups
+    }
+
+    fn k(&self) -> usize {
+        self.generators.len()
+    }
+}
+
+/// A subsystem: entities (with DOF) and groups of rows among them.
+///
+/// Proof sketch of the frame construction: for an absolute row `y`, the frame columns carry
+/// `−y·T_j`; relative rows are displacement-invariant (`y·T_j = 0` at a solution). So
+/// `(v, ψ)` is in the kernel of the augmented Jacobian exactly when `J(v − Tψ) = 0`, i.e. the
+/// projection of the augmented kernel is `ker J + span T`: the motions allowed, up to a global
+/// displacement — which is what relative placement is about — and every displacement
+/// `(T_j, e_j)` is in the augmented kernel.
+#[derive(Clone, Debug)]
+pub(crate) struct Subsystem<F> {
+    pub(crate) entities: Vec<EntityIdx>,
+    pub(crate) groups: Vec<Group<F>>,
+}
+
+/// A maximal rigid subsystem.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct RawCluster {
+    /// Entities with DOF, in file order.
+    pub(crate) entities: Vec<EntityIdx>,
+    /// Indices of the subsystem's groups whose entities all lie in the cluster.
+    pub(crate) groups: Vec<usize>,
+    /// Whether it contains the frame (held by absolute constraints).
+    pub(crate) grounded: bool,
+}
+
+/// An object of the search: an entity of the subsystem (by position) or the frame.
+type Obj = usize;
+
+struct Search<'c, 'a, F> {
+    ctx: &'c Context<'a, F>,
+    sub: &'c Subsystem<F>,
+    echelon: Echelon<F>,
+    frame: Option<Obj>,
+    /// Columns of each object.
+    cols: Vec<Vec<usize>>,
+    /// Objects bound by each group (frame included for absolute groups).
+    group_objs: Vec<Vec<Obj>>,
+    /// Groups of each object.
+    obj_groups: Vec<Vec<usize>>,
+    /// Connected component of each object.
+    component: Vec<usize>,
+    ncols: usize,
+}
+
+impl<'c, 'a, F: Field> Search<'c, 'a, F> {
+    fn new(ctx: &'c Context<'a, F>, sub: &'c Subsystem<F>) -> Self {
+        let layout = ctx.layout;
+        let k = ctx.k();
+        let has_frame = sub.groups.iter().any(|g| g.absolute);
+        let ncols = layout.ncols();
+        let total = ncols + if has_frame { k } else { 0 };
+        let n = sub.entities.len();
+        let frame = has_frame.then_some(n);
+        let mut cols: Vec<Vec<usize>> =
+            sub.entities.iter().map(|e| layout.columns(*e).collect()).collect();
+        if has_frame {
+            cols.push((ncols..ncols + k).collect());
+        }
+        let pos: HashMap<EntityIdx, Obj> =
+            sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
+        let mut group_objs = Vec::with_capacity(sub.groups.len());
+        let mut obj_groups = vec![Vec::new(); cols.len()];
+        for (gi, g) in sub.groups.iter().enumerate() {
+            let mut objs: Vec<Obj> =
+                g.entities.iter().filter_map(|e| pos.get(e).copied()).collect();
+            if g.absolute {
+                objs.extend(frame);
+            }
+            for o in &objs {
+                obj_groups[*o].push(gi);
+            }
+            group_objs.push(objs);
+        }
+        let mut echelon = Echelon::new(total, ctx.options.clone());
+        for e in &sub.entities {
+            for r in ctx.internal.get(e).into_iter().flatten() {
+                echelon.insert(r.clone());
+            }
+        }
+        for g in &sub.groups {
+            for r in &g.rows {
+                if g.absolute {
+                    let mut entries = r.entries().to_vec();
+                    for (j, t) in ctx.generators.iter().enumerate() {
+                        let v = r.dot_dense(t);
+                        if !v.is_zero() {
+                            entries.push((ncols + j, v.neg()));
+                        }
+                    }
+                    echelon.insert(SparseRow::from_entries(entries));
+                } else {
+                    echelon.insert(r.clone());
+                }
+            }
+        }
+        // Connected components of the object–group graph.
+        let mut component = vec![usize::MAX; cols.len()];
+        let mut next = 0;
+        for start in 0..cols.len() {
+            if component[start] != usize::MAX {
+                continue;
+            }
+            let mut stack = vec![start];
+            component[start] = next;
+            while let Some(o) = stack.pop() {
+                for g in &obj_groups[o] {
+                    for p in &group_objs[*g] {
+                        if component[*p] == usize::MAX {
+                            component[*p] = next;
+                            stack.push(*p);
+                        }
+                    }
+                }
+            }
+            next += 1;
+        }
+        Search { ctx, sub, echelon, frame, cols, group_objs, obj_groups, component, ncols }
+    }
+
+    /// The row of the displacement generators at column `c` (for the frame: a unit vector).
+    fn t_row(&self, c: usize) -> SparseRow<F> {
+        if c >= self.ncols {
+            return SparseRow::from_entries(vec![(c - self.ncols, F::one())]);
+        }
+        SparseRow::from_entries(
+            self.ctx
+                .generators
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| !t[c].is_zero())
+                .map(|(j, t)| (j, t[c].clone()))
+                .collect(),
+        )
+    }
+
+    /// A reference of a set: columns whose displacement rows are independent, as many as the
+    /// set's degree of rigidity.
+    fn reference(&self, set: &[Obj]) -> Vec<usize> {
+        let k = self.ctx.k();
+        let mut e = Echelon::new(k, self.ctx.options.clone());
+        let mut r = Vec::new();
+        for &o in set {
+            for &c in &self.cols[o] {
+                if e.rank() == k {
+                    return r;
+                }
+                if e.insert(self.t_row(c)).is_independent() {
+                    r.push(c);
+                }
+            }
+        }
+        r
+    }
+
+    /// Makes the reference's columns free; false if one cannot be (then the reference was not
+    /// independent — impossible with exact arithmetic).
+    fn anchor(&mut self, reference: &[usize]) -> bool {
+        let mut keep = vec![false; self.echelon.ncols()];
+        for &c in reference {
+            keep[c] = true;
+        }
+        reference.iter().all(|&c| self.echelon.make_free(c, &keep).unwrap_or(false))
+    }
+
+    /// Whether column `c` is held by the anchored reference (in it, or determined by it).
+    fn held(&self, c: usize, keep: &[bool]) -> bool {
+        if keep[c] {
+            return true;
+        }
+        match self.echelon.pivot_row(c) {
+            None => false,
+            Some(row) => row.entries().iter().all(|(col, _)| *col == c || keep[*col]),
+        }
+    }
+
+    fn obj_held(&self, o: Obj, keep: &[bool]) -> bool {
+        self.cols[o].iter().all(|c| self.held(*c, keep))
+    }
+
+    fn mask(&self, reference: &[usize]) -> Vec<bool> {
+        let mut keep = vec![false; self.echelon.ncols()];
+        for &c in reference {
+            keep[c] = true;
+        }
+        keep
+    }
+
+    /// Whether a set of objects is rigid.
+    fn rigid(&mut self, set: &[Obj]) -> bool {
+        let r = self.reference(set);
+        if !self.anchor(&r) {
+            return false;
+        }
+        let keep = self.mask(&r);
+        set.iter().all(|o| self.obj_held(*o, &keep))
+    }
+
+    /// The maximal rigid set containing the rigid set `seed`.
+    fn grow(&mut self, seed: Vec<Obj>) -> Vec<Obj> {
+        let k = self.ctx.k();
+        let comp = self.component[seed[0]];
+        let members: Vec<Obj> =
+            (0..self.cols.len()).filter(|o| self.component[*o] == comp).collect();
+        let mut set = seed;
+        loop {
+            let r = self.reference(&set);
+            self.anchor(&r);
+            let keep = self.mask(&r);
+            let mut closure: Vec<Obj> = members
+                .iter()
+                .copied()
+                .filter(|o| set.contains(o) || self.obj_held(*o, &keep))
+                .collect();
+            closure.sort_unstable();
+            if r.len() == k {
+                return closure;
+            }
+            // The degree of rigidity is not full: try to extend by one entity (neighbours
+            // first); an extension raises it, so this loops at most k times.
+            let mut inside = vec![false; self.cols.len()];
+            for o in &closure {
+                inside[*o] = true;
+            }
+            let mut neighbours: Vec<Obj> = Vec::new();
+            for o in &closure {
+                for g in &self.obj_groups[*o] {
+                    for p in &self.group_objs[*g] {
+                        if !inside[*p] && !neighbours.contains(p) {
+                            neighbours.push(*p);
+                        }
+                    }
+                }
+            }
+            let others = members.iter().copied().filter(|o| !inside[*o] && !neighbours.contains(o));
+            let candidates: Vec<Obj> = neighbours.iter().copied().chain(others).collect();
+            let mut extended = None;
+            for e in candidates {
+                let mut bigger = closure.clone();
+                bigger.push(e);
+                if self.rigid(&bigger) {
+                    extended = Some(bigger);
+                    break;
+                }
+            }
+            match extended {
+                Some(b) => set = b,
+                None => return closure,
+            }
+        }
+    }
+
+    fn run(mut self) -> Vec<RawCluster> {
+        let nobj = self.cols.len();
+        let mut clusters: Vec<Vec<Obj>> = Vec::new();
+        let mut of_obj: Vec<Vec<usize>> = vec![Vec::new(); nobj];
+        let covered = |objs: &[Obj], of_obj: &[Vec<usize>]| -> bool {
+            let Some(first) = objs.first() else { return true };
+            of_obj[*first].iter().any(|c| objs.iter().all(|o| of_obj[*o].contains(c)))
+        };
+        for gi in 0..self.sub.groups.len() {
+            let objs = self.group_objs[gi].clone();
+            if objs.is_empty() || covered(&objs, &of_obj) {
+                continue;
+            }
+            if !self.rigid(&objs) {
+                continue;
+            }
+            let cluster = self.grow(objs);
+            if clusters.contains(&cluster) {
+                continue;
+            }
+            for o in &cluster {
+                of_obj[*o].push(clusters.len());
+            }
+            clusters.push(cluster);
+        }
+        for (o, of) in of_obj.iter_mut().enumerate() {
+            if of.is_empty() && Some(o) != self.frame {
+                of.push(clusters.len());
+                clusters.push(vec![o]);
+            }
+        }
+        let frame = self.frame;
+        clusters
+            .into_iter()
+            .filter(|c| c.iter().any(|o| Some(*o) != frame))
+            .map(|c| {
+                let mut entities: Vec<EntityIdx> = c
+                    .iter()
+                    .filter(|o| Some(**o) != frame)
+                    .map(|o| self.sub.entities[*o])
+                    .collect();
+                entities.sort_unstable();
+                let groups = (0..self.sub.groups.len())
+                    .filter(|g| self.group_objs[*g].iter().all(|o| c.contains(o)))
+                    .collect();
+                RawCluster { entities, groups, grounded: frame.is_some_and(|f| c.contains(&f)) }
+            })
+            .collect()
+    }
+}
+
+/// The maximal rigid subsystems of a subsystem, sorted by first entity (file order).
+pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Vec<RawCluster> {
+    let mut out = Search::new(ctx, sub).run();
+    out.sort_by(|a, b| a.entities.cmp(&b.entities));
+    out
+}

@@ -1,0 +1,444 @@
+//! W-decomposition (witness paper §5, Algorithm 3) and the well-constrained boundary (§3.2).
+//!
+//! A rigid subsystem is decomposed by removing one constraint `e`, finding the maximal rigid
+//! subsystems of what is left ([`crate::rigid`]), and keeping those that are *non-trivial*:
+//! that have an entity not on their boundary (an entity bound only by the subsystem's own
+//! constraints — a bar between two boundary points is trivial, a triangle hanging from two
+//! points is not), and are not the whole system. Each non-trivial subsystem `M` is replaced by
+//! its boundary: an independent set of relations (distances, angles) among its boundary
+//! entities, chosen by incremental elimination at the witness until they make the boundary as
+//! rigid as `M` does (§3.2: all maximal independent subsets are equivalent). With `e` put back
+//! the reduced system is rigid; the reduced system and every `M` are decomposed recursively.
+//! A system for which no constraint gives a non-trivial subsystem is W-indecomposable: a leaf.
+//!
+//! The result is a DR-plan (decomposition–recombination plan, Sitharam et al.): a tree of
+//! rigid subsystems ordered by containment, whose leaves are W-indecomposable. Nodes found in
+//! a reduced system are mapped back to the original entities and constraints (each boundary
+//! replaced by the subsystem it stands for) and kept only if rigid there.
+//!
+//! **Which constraint first.** The paper's §7 suggests trying constraints that appear in few
+//! chains. The heuristic used: constraints binding an entity of low degree come first (an
+//! entity attached by few constraints, such as a vertex added by a Henneberg move, is split off
+//! by removing one of them), then file order. [`Statistics`] counts the maximal rigid subsystem
+//! computations, so the saving over file order can be measured.
+
+use gcs_jacobian::relation_row;
+use gcs_model::{ConstraintIdx, ConstraintKind, Dim, EntityIdx, EntityKind, Shape, System};
+use gcs_rank::{Echelon, Field, SparseRow};
+
+use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
+
+/// Order in which constraints are tried for removal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RemovalOrder {
+    /// Constraints in few short cycles of the constraint graph first (triangles, then 4-cycles
+    /// through the constraint's entities), then file order (the default).
+    #[default]
+    FewShortCycles,
+    /// Constraints binding low-degree entities first, then file order.
+    LowDegreeFirst,
+    /// File order.
+    FileOrder,
+}
+
+/// Counters of a W-decomposition.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Statistics {
+    /// Maximal rigid subsystem computations (each one elimination plus anchoring).
+    pub mrs_computations: usize,
+    /// Constraints removed without revealing a non-trivial subsystem.
+    pub fruitless_removals: usize,
+}
+
+/// A node of a W-decomposition: a rigid subsystem and the rigid subsystems it decomposes into.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DecompositionNode {
+    /// Its entities in file order (segments whose points are in it included).
+    pub entities: Vec<EntityIdx>,
+    /// Its constraints in file order.
+    pub constraints: Vec<ConstraintIdx>,
+    /// Sub-subsystems; empty for a W-indecomposable leaf.
+    pub children: Vec<DecompositionNode>,
+}
+
+/// A node over the labels of a (possibly reduced) subsystem.
+#[derive(Clone, Debug)]
+struct Node {
+    entities: Vec<EntityIdx>,
+    labels: Vec<Label>,
+    children: Vec<Node>,
+}
+
+/// A non-trivial subsystem replaced by its boundary in a reduced system.
+struct Replacement {
+    /// The boundary relations standing for it.
+    virtual_labels: Vec<Label>,
+    entities: Vec<EntityIdx>,
+    labels: Vec<Label>,
+}
+
+pub(crate) struct Decomposer<'c, 'a, F> {
+    ctx: &'c Context<'a, F>,
+    witness: Vec<F>,
+    order: RemovalOrder,
+    next_virtual: usize,
+    pub(crate) stats: Statistics,
+    /// Recursion budget: subsystems decomposed so far, to bound the work on huge inputs.
+    budget: usize,
+}
+
+impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
+    pub(crate) fn new(ctx: &'c Context<'a, F>, witness: Vec<F>, order: RemovalOrder) -> Self {
+        Decomposer {
+            ctx,
+            witness,
+            order,
+            next_virtual: 0,
+            stats: Statistics::default(),
+            budget: 100_000,
+        }
+    }
+
+    /// The W-decomposition of a rigid subsystem.
+    pub(crate) fn decompose(&mut self, sub: &Subsystem<F>) -> DecompositionNode {
+        let node = self.wdec(sub);
+        self.to_public(node)
+    }
+
+    fn to_public(&self, node: Node) -> DecompositionNode {
+        let system = self.ctx.system;
+        let mut entities = node.entities.clone();
+        for e in system.entity_indices() {
+            if let Some((a, b)) = system.segment_points(e)
+                && node.entities.contains(&a)
+                && node.entities.contains(&b)
+            {
+                entities.push(e);
+            }
+        }
+        entities.sort_unstable();
+        let mut constraints: Vec<ConstraintIdx> = node
+            .labels
+            .iter()
+            .filter_map(|l| match l {
+                Label::Constraint(c) => Some(*c),
+                Label::Virtual(_) => None,
+            })
+            .collect();
+        constraints.sort_unstable();
+        let mut children: Vec<DecompositionNode> =
+            node.children.into_iter().map(|c| self.to_public(c)).collect();
+        children.sort_by(|a, b| a.entities.cmp(&b.entities));
+        DecompositionNode { entities, constraints, children }
+    }
+
+    fn leaf(sub: &Subsystem<F>) -> Node {
+        Node {
+            entities: sub.entities.clone(),
+            labels: sub.groups.iter().map(|g| g.label).collect(),
+            children: Vec::new(),
+        }
+    }
+
+    fn removal_order(&self, sub: &Subsystem<F>) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..sub.groups.len()).collect();
+        if self.order == RemovalOrder::FewShortCycles {
+            // The entity graph: two entities are adjacent when a group binds both.
+            let index = |e: &EntityIdx| sub.entities.iter().position(|x| x == e);
+            let n = sub.entities.len();
+            let mut adj: Vec<Vec<usize>> = vec![Vec::new(); n];
+            for g in &sub.groups {
+                let ix: Vec<usize> = g.entities.iter().filter_map(index).collect();
+                for &a in &ix {
+                    for &b in &ix {
+                        if a != b && !adj[a].contains(&b) {
+                            adj[a].push(b);
+                        }
+                    }
+                }
+            }
+            let key: Vec<(usize, usize)> = sub
+                .groups
+                .iter()
+                .map(|g| {
+                    let ix: Vec<usize> = g.entities.iter().filter_map(index).collect();
+                    let (mut triangles, mut squares) = (0, 0);
+                    for (i, &u) in ix.iter().enumerate() {
+                        for &v in &ix[i + 1..] {
+                            triangles += adj[u].iter().filter(|w| adj[v].contains(w)).count();
+                            for &w in adj[u].iter().filter(|w| **w != v) {
+                                squares += adj[w]
+                                    .iter()
+                                    .filter(|x| **x != u && adj[v].contains(x))
+                                    .count();
+                            }
+                        }
+                    }
+                    (triangles, squares)
+                })
+                .collect();
+            order.sort_by_key(|&g| (key[g], g));
+        } else if self.order == RemovalOrder::LowDegreeFirst {
+            let degree =
+                |e: &EntityIdx| sub.groups.iter().filter(|g| g.entities.contains(e)).count();
+            let key: Vec<usize> = sub
+                .groups
+                .iter()
+                .map(|g| g.entities.iter().map(degree).min().unwrap_or(usize::MAX))
+                .collect();
+            order.sort_by_key(|&g| (key[g], g));
+        }
+        order
+    }
+
+    fn wdec(&mut self, sub: &Subsystem<F>) -> Node {
+        if sub.groups.len() <= 1 || sub.entities.len() <= 1 || self.budget == 0 {
+            return Self::leaf(sub);
+        }
+        self.budget -= 1;
+        for gi in self.removal_order(sub) {
+            let mut without = sub.clone();
+            let removed = without.groups.remove(gi);
+            self.stats.mrs_computations += 1;
+            let found = clusters(self.ctx, &without);
+            let nontrivial: Vec<RawCluster> = found
+                .into_iter()
+                .filter(|m| {
+                    m.entities.len() < sub.entities.len()
+                        && m.entities.len() > 1
+                        && m.entities.iter().any(|e| !on_boundary(&without, &removed, m, *e))
+                })
+                .collect();
+            if nontrivial.is_empty() {
+                self.stats.fruitless_removals += 1;
+                continue;
+            }
+            if let Some(node) = self.split(sub, &without, &removed, nontrivial) {
+                return node;
+            }
+            self.stats.fruitless_removals += 1;
+        }
+        Self::leaf(sub)
+    }
+
+    /// Replaces the non-trivial subsystems by their boundaries, decomposes the reduced system
+    /// and the subsystems, and assembles the node of `sub`.
+    fn split(
+        &mut self,
+        sub: &Subsystem<F>,
+        without: &Subsystem<F>,
+        removed: &Group<F>,
+        nontrivial: Vec<RawCluster>,
+    ) -> Option<Node> {
+        let mut used_groups = vec![false; without.groups.len()];
+        let mut internal: Vec<EntityIdx> = Vec::new();
+        let mut replacements: Vec<Replacement> = Vec::new();
+        let mut subtrees: Vec<Node> = Vec::new();
+        let mut boundary_groups: Vec<Group<F>> = Vec::new();
+        for m in nontrivial {
+            let groups: Vec<usize> =
+                m.groups.iter().copied().filter(|g| !used_groups[*g]).collect();
+            let boundary: Vec<EntityIdx> = m
+                .entities
+                .iter()
+                .copied()
+                .filter(|e| on_boundary(without, removed, &m, *e))
+                .collect();
+            let Some(relations) = self.boundary(&boundary) else { continue };
+            for g in &groups {
+                used_groups[*g] = true;
+            }
+            internal.extend(m.entities.iter().copied().filter(|e| !boundary.contains(e)));
+            let msub = Subsystem {
+                entities: m.entities.clone(),
+                groups: groups.iter().map(|g| without.groups[*g].clone()).collect(),
+            };
+            subtrees.push(self.wdec(&msub));
+            replacements.push(Replacement {
+                virtual_labels: relations.iter().map(|g| g.label).collect(),
+                entities: m.entities.clone(),
+                labels: msub.groups.iter().map(|g| g.label).collect(),
+            });
+            boundary_groups.extend(relations);
+        }
+        if replacements.is_empty() {
+            return None;
+        }
+        let mut reduced = Subsystem {
+            entities: sub.entities.iter().copied().filter(|e| !internal.contains(e)).collect(),
+            groups: Vec::new(),
+        };
+        for (g, group) in without.groups.iter().enumerate() {
+            if !used_groups[g] {
+                reduced.groups.push(group.clone());
+            }
+        }
+        reduced.groups.extend(boundary_groups);
+        reduced.groups.push(removed.clone());
+        let reduced_tree = self.wdec(&reduced);
+        // Map the reduced tree back: the root is `sub` itself; its descendants are expanded
+        // (boundaries replaced by their subsystems) and kept when rigid in `sub`.
+        let mut root = Self::leaf(sub);
+        let mut nodes: Vec<Node> = Vec::new();
+        for child in reduced_tree.children {
+            nodes.extend(self.expand(child, &replacements, sub));
+        }
+        nodes.extend(subtrees);
+        root.children = nest(nodes);
+        Some(root)
+    }
+
+    /// Expands a node of a reduced system; returns the expanded node, or its expanded children
+    /// when it is not rigid once expanded.
+    fn expand(
+        &mut self,
+        node: Node,
+        replacements: &[Replacement],
+        sub: &Subsystem<F>,
+    ) -> Vec<Node> {
+        let mut entities = node.entities.clone();
+        let mut labels: Vec<Label> = Vec::new();
+        for l in &node.labels {
+            if let Some(r) = replacements.iter().find(|r| r.virtual_labels.contains(l)) {
+                for e in &r.entities {
+                    if !entities.contains(e) {
+                        entities.push(*e);
+                    }
+                }
+                for m in &r.labels {
+                    if !labels.contains(m) {
+                        labels.push(*m);
+                    }
+                }
+            } else if !labels.contains(l) {
+                labels.push(*l);
+            }
+        }
+        entities.sort_unstable();
+        let children: Vec<Node> =
+            node.children.into_iter().flat_map(|c| self.expand(c, replacements, sub)).collect();
+        let groups: Vec<Group<F>> =
+            sub.groups.iter().filter(|g| labels.contains(&g.label)).cloned().collect();
+        let candidate = Subsystem { entities: entities.clone(), groups };
+        self.stats.mrs_computations += 1;
+        let found = clusters(self.ctx, &candidate);
+        if found.iter().any(|c| c.entities == entities) {
+            vec![Node { entities, labels, children }]
+        } else {
+            children
+        }
+    }
+
+    /// An independent set of relations among `boundary` as rigid as the boundary is in a rigid
+    /// subsystem (§3.2), or `None` when the available relations cannot express it.
+    fn boundary(&mut self, boundary: &[EntityIdx]) -> Option<Vec<Group<F>>> {
+        let ctx = self.ctx;
+        let system = ctx.system;
+        let layout = ctx.layout;
+        let cols: Vec<usize> = boundary.iter().flat_map(|e| layout.columns(*e)).collect();
+        // Target: DOF of the boundary entities minus their degree of rigidity.
+        let k = ctx.generators.len();
+        let mut t = Echelon::new(k, ctx.options.clone());
+        for &c in &cols {
+            t.insert(SparseRow::from_entries(
+                ctx.generators
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, g)| !g[c].is_zero())
+                    .map(|(j, g)| (j, g[c].clone()))
+                    .collect(),
+            ));
+        }
+        let dof: usize = boundary.iter().map(|e| system.entity_dof(*e)).sum();
+        let target = dof.saturating_sub(t.rank());
+        let mut e = Echelon::new(layout.ncols(), ctx.options.clone());
+        for b in boundary {
+            for r in ctx.internal.get(b).into_iter().flatten() {
+                e.insert(r.clone());
+            }
+        }
+        let base = e.rank();
+        let mut out = Vec::new();
+        'pairs: for (i, &a) in boundary.iter().enumerate() {
+            for &b in &boundary[i + 1..] {
+                if e.rank() - base == target {
+                    break 'pairs;
+                }
+                for (kind, shape) in relations(system, a, b) {
+                    let Some(row) = relation_row(system, layout, kind, shape, &self.witness) else {
+                        continue;
+                    };
+                    if e.insert(row.clone()).is_independent() {
+                        out.push(Group {
+                            label: Label::Virtual(self.next_virtual),
+                            entities: vec![a, b],
+                            rows: vec![row],
+                            absolute: false,
+                        });
+                        self.next_virtual += 1;
+                    }
+                }
+            }
+        }
+        (e.rank() - base == target).then_some(out)
+    }
+}
+
+/// The metric relations that can stand between two entities in a boundary.
+fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<(ConstraintKind, Shape)> {
+    use ConstraintKind::{Angle, Distance};
+    use EntityKind as K;
+    let (ka, kb) = (system.entity(a).kind(), system.entity(b).kind());
+    let three = system.dim() == Dim::Three;
+    match (ka, kb) {
+        (K::Point, K::Point) => vec![(Distance, Shape::PointPoint(a, b))],
+        (K::Point, K::Line) => vec![(Distance, Shape::PointLine { point: a, line: b })],
+        (K::Line, K::Point) => vec![(Distance, Shape::PointLine { point: b, line: a })],
+        (K::Point, K::Plane) => vec![(Distance, Shape::PointPlane { point: a, plane: b })],
+        (K::Plane, K::Point) => vec![(Distance, Shape::PointPlane { point: b, plane: a })],
+        (K::Line, K::Line) => {
+            vec![(Angle, Shape::LineLine(a, b)), (Distance, Shape::LineLine(a, b))]
+        }
+        (K::Plane, K::Plane) => {
+            vec![(Angle, Shape::PlanePlane(a, b)), (Distance, Shape::PlanePlane(a, b))]
+        }
+        (K::Line, K::Plane) if three => vec![(Angle, Shape::LinePlane { line: a, plane: b })],
+        (K::Plane, K::Line) if three => vec![(Angle, Shape::LinePlane { line: b, plane: a })],
+        _ => Vec::new(),
+    }
+}
+
+/// Whether `e` of the subsystem `m` is on its boundary: bound by a group outside `m` (the
+/// removed constraint counts).
+fn on_boundary<F>(sub: &Subsystem<F>, removed: &Group<F>, m: &RawCluster, e: EntityIdx) -> bool {
+    if removed.entities.contains(&e) {
+        return true;
+    }
+    sub.groups
+        .iter()
+        .enumerate()
+        .any(|(g, group)| !m.groups.contains(&g) && group.entities.contains(&e))
+}
+
+/// Arranges nodes into a forest by containment of their entity sets.
+fn nest(mut nodes: Vec<Node>) -> Vec<Node> {
+    // Largest first, so each node can be placed under the smallest container already placed.
+    nodes.sort_by_key(|n| std::cmp::Reverse(n.entities.len()));
+    let mut roots: Vec<Node> = Vec::new();
+    for n in nodes {
+        insert(&mut roots, n);
+    }
+    roots
+}
+
+fn insert(forest: &mut Vec<Node>, n: Node) {
+    for parent in forest.iter_mut() {
+        if parent.entities.len() > n.entities.len()
+            && n.entities.iter().all(|e| parent.entities.contains(e))
+        {
+            insert(&mut parent.children, n);
+            return;
+        }
+    }
+    forest.push(n);
+}
