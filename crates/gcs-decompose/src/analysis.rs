@@ -11,6 +11,7 @@ use gcs_rank::{
 };
 
 use crate::error::AnalysisError;
+use crate::rigid::ClusterMethod;
 use crate::wdec::{DecompositionNode, RemovalOrder, Statistics};
 
 /// The arithmetic the rank is decided in.
@@ -61,6 +62,12 @@ pub struct AnalysisOptions {
     pub decompose: bool,
     /// Which constraint the W-decomposition tries to remove first.
     pub removal_order: RemovalOrder,
+    /// How clusters are found.
+    pub cluster_method: ClusterMethod,
+    /// The most maximal rigid subsystem computations a W-decomposition may spend (each one
+    /// elimination); past it, the subsystems not yet examined are reported as leaves and
+    /// the statistics say the decomposition is incomplete.
+    pub decomposition_budget: usize,
 }
 
 impl Default for AnalysisOptions {
@@ -70,6 +77,8 @@ impl Default for AnalysisOptions {
             witness: WitnessOptions::default(),
             decompose: false,
             removal_order: RemovalOrder::default(),
+            cluster_method: ClusterMethod::default(),
+            decomposition_budget: 20_000,
         }
     }
 }
@@ -402,7 +411,7 @@ pub fn analyze_at(
 
 /// Systems with at most this many unknowns get their clusters decided over ℚ by the exact
 /// backend; larger ones modulo the 61-bit prime (the rank stays proven either way).
-const EXACT_CLUSTER_LIMIT: usize = 3_000;
+const EXACT_CLUSTER_LIMIT: usize = 0;
 
 /// Clusters, and the decomposition when asked for.
 type ClusterResult = (Vec<Cluster>, Option<(Vec<DecompositionNode>, Statistics)>);
@@ -418,14 +427,16 @@ fn clusters_in<F: Field>(
     let jacobian: Jacobian<F> = witness.jacobian(system, layout)?;
     let coords: Vec<F> = witness.coords_in()?;
     let generators = motions::generators::<F>(system, layout, &coords)?;
-    let ctx = crate::rigid::Context::new(system, layout, &jacobian, generators, echelon);
+    let mut ctx = crate::rigid::Context::new(system, layout, &jacobian, generators, echelon);
+    ctx.method = options.cluster_method;
     let groups = ctx.constraint_groups(&jacobian);
     let entities: Vec<EntityIdx> =
         system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
     let sub = crate::rigid::Subsystem { entities, groups };
     let raw = crate::rigid::clusters(&ctx, &sub);
     let decomposition = options.decompose.then(|| {
-        let mut d = crate::wdec::Decomposer::new(&ctx, coords, options.removal_order);
+        let mut d = crate::wdec::Decomposer::new(&ctx, coords, options.removal_order)
+            .with_budget(options.decomposition_budget);
         let mut trees = Vec::new();
         // In the order of the finished clusters (sorted by first entity, segments added).
         let finished = finish_clusters(system, &sub, raw.clone());

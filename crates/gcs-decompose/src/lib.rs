@@ -33,4 +33,5 @@ mod wdec;
 
 pub use analysis::{Analysis, AnalysisOptions, Backend, Cluster, Redundancy, analyze, analyze_at};
 pub use error::AnalysisError;
+pub use rigid::ClusterMethod;
 pub use wdec::{DecompositionNode, RemovalOrder, Statistics};

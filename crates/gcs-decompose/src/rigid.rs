@@ -33,6 +33,22 @@ use gcs_jacobian::{Jacobian, Layout, RowOwner};
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{Echelon, EchelonOptions, Field, SparseRow};
 
+/// How the clusters are found. All three give the same clusters; they differ in cost.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ClusterMethod {
+    /// One elimination; every question ("is this set rigid?", "what does anchoring it hold?")
+    /// is then answered in the small space of the free columns: the velocity of a column is
+    /// minus its reduced row over the free columns (the kernel restricted to it). No pivot
+    /// exchange, no new elimination. The default.
+    #[default]
+    Kernel,
+    /// The paper's Algorithm 2: one elimination, each reference anchored by pivot exchanges
+    /// ([`gcs_rank::Echelon::make_free`]) on that echelon.
+    Exchange,
+    /// The paper's Algorithm 1: a new elimination for each reference, its columns ordered last.
+    Eliminate,
+}
+
 /// What a group of rows stands for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum Label {
@@ -62,6 +78,8 @@ pub(crate) struct Context<'a, F> {
     /// Entity-internal rows by entity.
     pub(crate) internal: HashMap<EntityIdx, Vec<SparseRow<F>>>,
     pub(crate) options: EchelonOptions,
+    /// How clusters are found.
+    pub(crate) method: ClusterMethod,
 }
 
 impl<'a, F: Field> Context<'a, F> {
@@ -78,7 +96,7 @@ impl<'a, F: Field> Context<'a, F> {
                 internal.entry(*e).or_default().push(row.clone());
             }
         }
-        Context { system, layout, generators, internal, options }
+        Context { system, layout, generators, internal, options, method: ClusterMethod::default() }
     }
 
     /// The groups of every constraint of the system, from the Jacobian.
@@ -148,6 +166,8 @@ struct Search<'c, 'a, F> {
     /// Connected component of each object.
     component: Vec<usize>,
     ncols: usize,
+    /// The rows inserted (for Algorithm 1, which eliminates again for each reference).
+    rows: Vec<SparseRow<F>>,
 }
 
 impl<'c, 'a, F: Field> Search<'c, 'a, F> {
@@ -179,11 +199,9 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             }
             group_objs.push(objs);
         }
-        let mut echelon = Echelon::new(total, ctx.options.clone());
+        let mut rows: Vec<SparseRow<F>> = Vec::new();
         for e in &sub.entities {
-            for r in ctx.internal.get(e).into_iter().flatten() {
-                echelon.insert(r.clone());
-            }
+            rows.extend(ctx.internal.get(e).into_iter().flatten().cloned());
         }
         for g in &sub.groups {
             for r in &g.rows {
@@ -195,11 +213,15 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
                             entries.push((ncols + j, v.neg()));
                         }
                     }
-                    echelon.insert(SparseRow::from_entries(entries));
+                    rows.push(SparseRow::from_entries(entries));
                 } else {
-                    echelon.insert(r.clone());
+                    rows.push(r.clone());
                 }
             }
+        }
+        let mut echelon = Echelon::new(total, ctx.options.clone());
+        for r in &rows {
+            echelon.insert(r.clone());
         }
         // Connected components of the object–group graph.
         let mut component = vec![usize::MAX; cols.len()];
@@ -222,7 +244,7 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             }
             next += 1;
         }
-        Search { ctx, sub, echelon, frame, cols, group_objs, obj_groups, component, ncols }
+        Search { ctx, sub, echelon, frame, cols, group_objs, obj_groups, component, ncols, rows }
     }
 
     /// The row of the displacement generators at column `c` (for the frame: a unit vector).
@@ -263,11 +285,90 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
     /// Makes the reference's columns free; false if one cannot be (then the reference was not
     /// independent — impossible with exact arithmetic).
     fn anchor(&mut self, reference: &[usize]) -> bool {
-        let mut keep = vec![false; self.echelon.ncols()];
-        for &c in reference {
-            keep[c] = true;
+        let keep = self.mask(reference);
+        if self.ctx.method == ClusterMethod::Eliminate {
+            // Algorithm 1: eliminate again with the reference's columns last.
+            let n = self.echelon.ncols();
+            let priority: Vec<usize> = (0..n).map(|c| if keep[c] { n + c } else { c }).collect();
+            let mut e = Echelon::new(n, self.ctx.options.clone());
+            e.set_priority(priority);
+            for r in &self.rows {
+                e.insert(r.clone());
+            }
+            self.echelon = e;
+            return reference.iter().all(|c| !self.echelon.is_pivot(*c));
         }
         reference.iter().all(|&c| self.echelon.make_free(c, &keep).unwrap_or(false))
+    }
+
+    /// The velocity of column `c` as a linear form in the free-column parameters of the kernel:
+    /// a free column is its own parameter; a pivot column is minus its reduced row (which has
+    /// entries on free columns only).
+    fn velocity(&self, c: usize) -> SparseRow<F> {
+        match self.echelon.pivot_row(c) {
+            None => SparseRow::from_entries(vec![(c, F::one())]),
+            Some(row) => SparseRow::from_entries(
+                row.entries()
+                    .iter()
+                    .filter(|(col, _)| *col != c)
+                    .map(|(col, v)| (*col, v.neg()))
+                    .collect(),
+            ),
+        }
+    }
+
+    /// Kernel method: whether a set is rigid — the velocities of its columns, as functions of
+    /// the kernel parameters, stay in the span of the displacements restricted to it. Returns
+    /// the set's degree of rigidity too.
+    fn kernel_rigid(&self, set: &[Obj]) -> (bool, usize) {
+        let cols: Vec<usize> = set.iter().flat_map(|o| self.cols[*o].iter().copied()).collect();
+        let m = cols.len();
+        let mut e = Echelon::new(m, self.ctx.options.clone());
+        // Columns of T restricted to the set, as vectors over the set's columns.
+        let k = self.ctx.k();
+        let mut t_cols: Vec<Vec<(usize, F)>> = vec![Vec::new(); k];
+        for (i, &c) in cols.iter().enumerate() {
+            for (j, v) in self.t_row(c).entries() {
+                t_cols[*j].push((i, v.clone()));
+            }
+        }
+        for t in t_cols {
+            e.insert(SparseRow::from_entries(t));
+        }
+        let dor = e.rank();
+        // Columns of the velocity map, one per kernel parameter.
+        let mut by_param: std::collections::BTreeMap<usize, Vec<(usize, F)>> = Default::default();
+        for (i, &c) in cols.iter().enumerate() {
+            for (f, v) in self.velocity(c).entries() {
+                by_param.entry(*f).or_default().push((i, v.clone()));
+            }
+        }
+        for (_, v) in by_param {
+            if e.insert(SparseRow::from_entries(v)).is_independent() {
+                return (false, dor);
+            }
+        }
+        (true, dor)
+    }
+
+    /// Kernel method: the objects held when a rigid set of full degree of rigidity is
+    /// anchored: those whose velocities are combinations of the set's (anything that vanishes
+    /// on the set vanishes on them).
+    fn kernel_closure_full(&self, set: &[Obj], members: &[Obj]) -> Vec<Obj> {
+        let mut e = Echelon::new(self.echelon.ncols(), self.ctx.options.clone());
+        for o in set {
+            for c in &self.cols[*o] {
+                e.insert(self.velocity(*c));
+            }
+        }
+        members
+            .iter()
+            .copied()
+            .filter(|o| {
+                set.contains(o)
+                    || self.cols[*o].iter().all(|c| e.reduce(&self.velocity(*c)).is_zero())
+            })
+            .collect()
     }
 
     /// Whether column `c` is held by the anchored reference (in it, or determined by it).
@@ -295,6 +396,9 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
 
     /// Whether a set of objects is rigid.
     fn rigid(&mut self, set: &[Obj]) -> bool {
+        if self.ctx.method == ClusterMethod::Kernel {
+            return self.kernel_rigid(set).0;
+        }
         let r = self.reference(set);
         if !self.anchor(&r) {
             return false;
@@ -311,16 +415,39 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             (0..self.cols.len()).filter(|o| self.component[*o] == comp).collect();
         let mut set = seed;
         loop {
-            let r = self.reference(&set);
-            self.anchor(&r);
-            let keep = self.mask(&r);
-            let mut closure: Vec<Obj> = members
-                .iter()
-                .copied()
-                .filter(|o| set.contains(o) || self.obj_held(*o, &keep))
-                .collect();
+            let (mut closure, d) = if self.ctx.method == ClusterMethod::Kernel {
+                let (_, d) = self.kernel_rigid(&set);
+                if d == k {
+                    (self.kernel_closure_full(&set, &members), d)
+                } else {
+                    // Low degree of rigidity: the objects that join without raising it.
+                    let c: Vec<Obj> = members
+                        .iter()
+                        .copied()
+                        .filter(|o| {
+                            if set.contains(o) {
+                                return true;
+                            }
+                            let mut bigger = set.clone();
+                            bigger.push(*o);
+                            self.kernel_rigid(&bigger) == (true, d)
+                        })
+                        .collect();
+                    (c, d)
+                }
+            } else {
+                let r = self.reference(&set);
+                self.anchor(&r);
+                let keep = self.mask(&r);
+                let c = members
+                    .iter()
+                    .copied()
+                    .filter(|o| set.contains(o) || self.obj_held(*o, &keep))
+                    .collect();
+                (c, r.len())
+            };
             closure.sort_unstable();
-            if r.len() == k {
+            if d == k {
                 return closure;
             }
             // The degree of rigidity is not full: try to extend by one entity (neighbours

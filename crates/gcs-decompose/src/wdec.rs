@@ -48,6 +48,9 @@ pub struct Statistics {
     pub mrs_computations: usize,
     /// Constraints removed without revealing a non-trivial subsystem.
     pub fruitless_removals: usize,
+    /// Whether the decomposition ran to the end; false when the work budget was exhausted
+    /// (the subsystems not yet examined are then reported as leaves).
+    pub complete: bool,
 }
 
 /// A node of a W-decomposition: a rigid subsystem and the rigid subsystems it decomposes into.
@@ -83,7 +86,8 @@ pub(crate) struct Decomposer<'c, 'a, F> {
     order: RemovalOrder,
     next_virtual: usize,
     pub(crate) stats: Statistics,
-    /// Recursion budget: subsystems decomposed so far, to bound the work on huge inputs.
+    /// Work budget: maximal rigid subsystem computations left, to bound the work on huge
+    /// inputs.
     budget: usize,
 }
 
@@ -192,11 +196,15 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     }
 
     fn wdec(&mut self, sub: &Subsystem<F>) -> Node {
-        if sub.groups.len() <= 1 || sub.entities.len() <= 1 || self.budget == 0 {
+        if sub.groups.len() <= 1 || sub.entities.len() <= 1 {
             return Self::leaf(sub);
         }
-        self.budget -= 1;
         for gi in self.removal_order(sub) {
+            if self.budget == 0 {
+                self.stats.complete = false;
+                return Self::leaf(sub);
+            }
+            self.budget -= 1;
             let mut without = sub.clone();
             let removed = without.groups.remove(gi);
             self.stats.mrs_computations += 1;
