@@ -98,9 +98,15 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             witness,
             order,
             next_virtual: 0,
-            stats: Statistics::default(),
-            budget: 100_000,
+            stats: Statistics { complete: true, ..Statistics::default() },
+            budget: usize::MAX,
         }
+    }
+
+    /// Bounds the number of maximal rigid subsystem computations.
+    pub(crate) fn with_budget(mut self, budget: usize) -> Self {
+        self.budget = budget;
+        self
     }
 
     /// The W-decomposition of a rigid subsystem.
