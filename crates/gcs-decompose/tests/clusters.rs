@@ -1,0 +1,333 @@
+//! Maximal rigid subsystems (witness paper §4) and the W-decomposition (§5) on the papers'
+//! examples, and against a combinatorial oracle on random 2D bar frameworks.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use gcs_decompose::{
+    Analysis, AnalysisOptions, Backend, ClusterMethod, DecompositionNode, RemovalOrder, analyze,
+};
+use gcs_model::generate::{framework, laman_edges, random_coords};
+use gcs_model::rng::SplitMix64;
+use gcs_model::{Dim, System};
+use proptest::prelude::*;
+
+fn model(name: &str) -> System {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data").join(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    System::from_ron_str(&text, Some(name)).unwrap()
+}
+
+fn run(s: &System, decompose: bool) -> Analysis {
+    analyze(s, &AnalysisOptions { decompose, ..AnalysisOptions::default() }).unwrap()
+}
+
+/// Cluster entity ids, segments left out, as sorted sets.
+fn clusters(s: &System, a: &Analysis) -> Vec<BTreeSet<String>> {
+    a.clusters
+        .iter()
+        .map(|c| {
+            c.entities
+                .iter()
+                .filter(|e| s.segment_points(**e).is_none())
+                .map(|e| s.entity(*e).id.clone())
+                .collect()
+        })
+        .collect()
+}
+
+fn set(ids: &[&str]) -> BTreeSet<String> {
+    ids.iter().map(|s| s.to_string()).collect()
+}
+
+#[test]
+fn chain_of_three_triangles() {
+    let s = model("paper/chain.ron");
+    let a = run(&s, false);
+    assert_eq!(a.dof, 2);
+    assert_eq!(
+        clusters(&s, &a),
+        vec![set(&["p1", "p2", "p3"]), set(&["p3", "p4", "p5"]), set(&["p5", "p6", "p7"])]
+    );
+    for c in &a.clusters {
+        assert_eq!(c.constraints.len(), 3, "each triangle keeps its three distances");
+    }
+}
+
+#[test]
+fn butterfly_and_double_banana_share_hinges() {
+    let s = model("paper/butterfly.ron");
+    assert_eq!(
+        clusters(&s, &run(&s, false)),
+        vec![set(&["p0", "p1", "p2"]), set(&["p0", "p3", "p4"])]
+    );
+    let s = model("paper/double_banana.ron");
+    let c = clusters(&s, &run(&s, false));
+    assert_eq!(c.len(), 2);
+    let shared: BTreeSet<String> = c[0].intersection(&c[1]).cloned().collect();
+    assert_eq!(shared, set(&["N", "S"]));
+    assert!(c.iter().all(|x| x.len() == 5));
+}
+
+#[test]
+fn flow_fig1b_clusters() {
+    // {A, C, D, E, F} is rigid (over-rigid even); B slides along A. A point on an infinite
+    // line keeps its relative placement with it (the slide is a translation along the line),
+    // so {A, B} is a rigid pair, sharing A with the big cluster (docs/format.md §4).
+    let s = model("paper/flow_fig1b.ron");
+    assert_eq!(
+        clusters(&s, &run(&s, false)),
+        vec![set(&["A", "B"]), set(&["A", "C", "D", "E", "F"])]
+    );
+}
+
+#[test]
+fn every_model_is_covered_and_every_cluster_is_rigid_alone() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+    for sub in ["paper", "sketches"] {
+        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
+            let path = entry.unwrap().path();
+            let name = format!("{sub}/{}", path.file_name().unwrap().to_string_lossy());
+            let s = model(&name);
+            let a = run(&s, false);
+            for e in s.entity_indices() {
+                assert!(
+                    a.clusters.iter().any(|c| c.entities.contains(&e)),
+                    "{name}: {e:?} in no cluster"
+                );
+            }
+            // Cut out with its constraints, a cluster with more than one entity is rigid (up to
+            // absolute constraints: a grounded cluster has no trivial motion left, a free one
+            // only displacements).
+            for c in a.clusters.iter().filter(|c| c.entities.len() > 1) {
+                let cut = cut_out(&s, &c.entities, &c.constraints);
+                let ca = run(&cut, false);
+                assert_eq!(ca.dof, 0, "{name}: cluster {:?} is not rigid alone", c.entities);
+            }
+        }
+    }
+}
+
+/// The subsystem of `s` made of some entities and constraints (with the points of segments).
+fn cut_out(
+    s: &System,
+    entities: &[gcs_model::EntityIdx],
+    constraints: &[gcs_model::ConstraintIdx],
+) -> System {
+    // The cluster's entities, and the points of its segments (already among them: a segment is
+    // in a cluster only with both its points).
+    let keep: Vec<gcs_model::EntityIdx> =
+        s.entity_indices().filter(|e| entities.contains(e)).collect();
+    let mut b = gcs_model::SystemBuilder::new("cut", s.dim());
+    for e in &keep {
+        let ent = s.entity(*e);
+        match &ent.geometry {
+            gcs_model::Geometry::Point { at } => b.point(&ent.id, at.clone()).map(|_| ()),
+            gcs_model::Geometry::Line { at } => b.line(&ent.id, at.clone()).map(|_| ()),
+            gcs_model::Geometry::Plane { at } => b.plane(&ent.id, at.clone()).map(|_| ()),
+            gcs_model::Geometry::Circle { center, radius } => {
+                b.circle(&ent.id, center.clone(), radius.clone()).map(|_| ())
+            }
+            gcs_model::Geometry::Sphere { center, radius } => {
+                b.sphere(&ent.id, center.clone(), radius.clone()).map(|_| ())
+            }
+            gcs_model::Geometry::Segment { from, to } => {
+                b.segment(&ent.id, &s.entity(*from).id, &s.entity(*to).id).map(|_| ())
+            }
+        }
+        .unwrap();
+    }
+    for c in constraints {
+        let con = s.constraint(*c);
+        let args: Vec<&str> = con.args.iter().map(|a| s.entity(*a).id.as_str()).collect();
+        b.constraint(con.kind, &con.id, &args, con.value.clone()).unwrap();
+    }
+    b.build()
+}
+
+fn children_sets(s: &System, n: &DecompositionNode) -> Vec<BTreeSet<String>> {
+    n.children
+        .iter()
+        .map(|c| {
+            c.entities
+                .iter()
+                .filter(|e| s.segment_points(**e).is_none())
+                .map(|e| s.entity(*e).id.clone())
+                .collect()
+        })
+        .collect()
+}
+
+fn all_nodes(n: &DecompositionNode, out: &mut Vec<BTreeSet<gcs_model::EntityIdx>>) {
+    out.push(n.entities.iter().copied().collect());
+    for c in &n.children {
+        all_nodes(c, out);
+    }
+}
+
+#[test]
+fn two_k33_decompose_into_the_two_k33() {
+    let s = model("paper/two_k33.ron");
+    let a = run(&s, true);
+    assert_eq!(a.clusters.len(), 1, "rigid: one cluster");
+    let tree = &a.decomposition.as_ref().unwrap()[0];
+    let k33 = |p: &str, q: &str| -> BTreeSet<String> {
+        ["1", "2", "3"].iter().flat_map(|i| [format!("{p}{i}"), format!("{q}{i}")]).collect()
+    };
+    assert_eq!(children_sets(&s, tree), vec![k33("a", "b"), k33("c", "d")]);
+    // Each K3,3 is W-indecomposable, and so is fig. 8b (the reduced system): no other node.
+    assert!(tree.children.iter().all(|c| c.children.is_empty()));
+    // The same subsystems whichever constraint is tried first (e1 or e2 in the paper).
+    for order in [RemovalOrder::FileOrder, RemovalOrder::LowDegreeFirst] {
+        let b = analyze(
+            &s,
+            &AnalysisOptions {
+                decompose: true,
+                removal_order: order,
+                ..AnalysisOptions::default()
+            },
+        )
+        .unwrap();
+        let (mut x, mut y) = (Vec::new(), Vec::new());
+        all_nodes(tree, &mut x);
+        all_nodes(&b.decomposition.as_ref().unwrap()[0], &mut y);
+        x.sort();
+        y.sort();
+        assert_eq!(x, y, "{order:?}");
+    }
+}
+
+#[test]
+fn fig9_decomposable_and_indecomposable() {
+    let s = model("paper/fig9a_w_decomposable.ron");
+    let a = run(&s, true);
+    let tree = &a.decomposition.as_ref().unwrap()[0];
+    let inner: BTreeSet<String> = (1..=8).map(|i| format!("p{i}")).collect();
+    assert!(children_sets(&s, tree).contains(&inner), "the inner rigid part is found");
+    for name in [
+        "paper/fig9b_w_indecomposable.ron",
+        "paper/fig9c_w_indecomposable_member.ron",
+        "paper/kite.ron",
+    ] {
+        let s = model(name);
+        let a = run(&s, true);
+        let trees = a.decomposition.as_ref().unwrap();
+        assert_eq!(trees.len(), 1, "{name}");
+        assert!(trees[0].children.is_empty(), "{name} is W-indecomposable");
+        assert!(a.decomposition_statistics.unwrap().complete);
+    }
+}
+
+#[test]
+fn methods_agree_on_every_model() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
+    for sub in ["paper", "sketches"] {
+        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
+            let path = entry.unwrap().path();
+            let name = format!("{sub}/{}", path.file_name().unwrap().to_string_lossy());
+            let s = model(&name);
+            let base = run(&s, false).clusters;
+            for method in [ClusterMethod::Exchange, ClusterMethod::Eliminate] {
+                for backend in [Backend::Exact, Backend::ModP, Backend::Rational] {
+                    let o = AnalysisOptions {
+                        cluster_method: method,
+                        backend,
+                        ..AnalysisOptions::default()
+                    };
+                    assert_eq!(
+                        analyze(&s, &o).unwrap().clusters,
+                        base,
+                        "{name} {method:?} {backend:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Rank of an edge set in the 2D generic rigidity matroid: the largest (2,3)-sparse subset
+/// (greedy is optimal in a matroid; sparsity checked over all vertex subsets — small graphs).
+fn laman_rank(n: usize, edges: &[(usize, usize)]) -> usize {
+    let mut kept: Vec<(usize, usize)> = Vec::new();
+    for &e in edges {
+        kept.push(e);
+        let sparse = (1u32..(1 << n)).all(|mask| {
+            let k = mask.count_ones() as usize;
+            if k < 2 {
+                return true;
+            }
+            let inside =
+                kept.iter().filter(|(a, b)| mask >> a & 1 == 1 && mask >> b & 1 == 1).count();
+            inside <= 2 * k - 3
+        });
+        if !sparse {
+            kept.pop();
+        }
+    }
+    kept.len()
+}
+
+/// Rigid components: maximal vertex sets (of two or more) whose induced edges have rank
+/// 2k − 3; vertices in none are alone.
+fn rigid_components(n: usize, edges: &[(usize, usize)]) -> Vec<BTreeSet<usize>> {
+    let mut rigid: Vec<u32> = Vec::new();
+    for mask in 1u32..(1 << n) {
+        let k = mask.count_ones() as usize;
+        if k < 2 {
+            continue;
+        }
+        let inside: Vec<(usize, usize)> = edges
+            .iter()
+            .copied()
+            .filter(|(a, b)| mask >> a & 1 == 1 && mask >> b & 1 == 1)
+            .collect();
+        if laman_rank(n, &inside) == 2 * k - 3 {
+            rigid.push(mask);
+        }
+    }
+    let maximal: Vec<u32> =
+        rigid.iter().copied().filter(|m| !rigid.iter().any(|o| o != m && o & m == *m)).collect();
+    let mut out: Vec<BTreeSet<usize>> =
+        maximal.iter().map(|m| (0..n).filter(|i| m >> i & 1 == 1).collect()).collect();
+    for v in 0..n {
+        if !out.iter().any(|c| c.contains(&v)) {
+            out.push(BTreeSet::from([v]));
+        }
+    }
+    out.sort();
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// On random 2D bar frameworks (Laman graphs, then some bars removed and some added), the
+    /// clusters are exactly the rigid components the combinatorial count finds (Laman's
+    /// theorem makes the count exact for generic bar frameworks).
+    #[test]
+    fn clusters_are_the_rigid_components(seed in 0u64..10_000, n in 3usize..=8, removed in 0usize..4, added in 0usize..3) {
+        let mut rng = SplitMix64::new(seed);
+        let mut edges = laman_edges(n, 0.5, &mut rng);
+        for _ in 0..removed.min(edges.len().saturating_sub(1)) {
+            let i = rng.below(edges.len() as u64) as usize;
+            edges.remove(i);
+        }
+        for _ in 0..added {
+            let a = rng.below(n as u64) as usize;
+            let b = rng.below(n as u64) as usize;
+            if a != b && !edges.contains(&(a, b)) && !edges.contains(&(b, a)) {
+                edges.push((a, b));
+            }
+        }
+        let coords = random_coords(n, Dim::Two, 1000, &mut rng);
+        let s = framework("random", Dim::Two, &coords, &edges);
+        let a = run(&s, false);
+        let mut ours: Vec<BTreeSet<usize>> = a
+            .clusters
+            .iter()
+            .map(|c| c.entities.iter().map(|e| e.index()).collect())
+            .collect();
+        ours.sort();
+        prop_assert_eq!(ours, rigid_components(n, &edges));
+    }
+}
