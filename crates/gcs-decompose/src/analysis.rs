@@ -256,7 +256,13 @@ fn generic<F: Field>(
     let trivial = trivial_motions(&jacobian, &generators, options.clone());
     let n = jacobian.rows.len();
     let internal = jacobian.internal_count();
-    let analysis = analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), options);
+    // Tracking combinations costs far more than the elimination (they fill in): run untracked
+    // first and track only when some row turns out dependent.
+    let untracked = EchelonOptions { track_combinations: false, ..options.clone() };
+    let mut analysis = analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), untracked);
+    if analysis.outcomes.iter().any(|o| !o.is_independent()) {
+        analysis = analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), options);
+    }
     Ok((
         Outcome {
             rank: analysis.rank,
@@ -284,7 +290,12 @@ pub fn analyze_at(
     let (outcome, equations, internal) = match options.backend {
         Backend::Exact => {
             let jacobian: Jacobian<BigRational> = witness.jacobian(system, layout)?;
-            let (analysis, proof) = analyse_rows_exact(jacobian.ncols, &jacobian.rows, true)?;
+            // Untracked first (fast); with combinations only when a row is dependent.
+            let (mut analysis, mut proof) =
+                analyse_rows_exact(jacobian.ncols, &jacobian.rows, false)?;
+            if analysis.outcomes.iter().any(|o| !o.is_independent()) {
+                (analysis, proof) = analyse_rows_exact(jacobian.ncols, &jacobian.rows, true)?;
+            }
             // Trivial motions, exactly: T and J·T have at most six columns.
             let generators = motions::generators::<BigRational>(system, layout, &witness.coords)?;
             let trivial = exact_trivial_motions(&jacobian, &generators)?;

@@ -32,7 +32,8 @@ use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum RemovalOrder {
     /// Constraints in few short cycles of the constraint graph first (triangles, then 4-cycles
-    /// through the constraint's entities), then file order (the default).
+    /// through the constraint's entities), then central ones (equally far from the two ends of
+    /// a longest path found by a double breadth-first sweep), then file order (the default).
     #[default]
     FewShortCycles,
     /// Constraints binding low-degree entities first, then file order.
@@ -167,7 +168,35 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                     }
                 }
             }
-            let key: Vec<(usize, usize)> = sub
+            // Centrality: distances to the two ends of a long path (double BFS sweep); a
+            // constraint in the middle splits the system into halves of similar size, so the
+            // recursion is balanced instead of peeling one piece at a time.
+            let bfs = |start: usize| -> Vec<usize> {
+                let mut dist = vec![usize::MAX; n];
+                let mut queue = std::collections::VecDeque::from([start]);
+                dist[start] = 0;
+                while let Some(u) = queue.pop_front() {
+                    for &w in &adj[u] {
+                        if dist[w] == usize::MAX {
+                            dist[w] = dist[u] + 1;
+                            queue.push_back(w);
+                        }
+                    }
+                }
+                dist
+            };
+            let far = |d: &[usize]| {
+                (0..n).filter(|i| d[*i] != usize::MAX).max_by_key(|i| d[*i]).unwrap_or(0)
+            };
+            let (d1, d2) = if n > 0 {
+                let u = far(&bfs(0));
+                let du = bfs(u);
+                let v = far(&du);
+                (du, bfs(v))
+            } else {
+                (Vec::new(), Vec::new())
+            };
+            let key: Vec<(usize, usize, usize)> = sub
                 .groups
                 .iter()
                 .map(|g| {
@@ -184,7 +213,9 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                             }
                         }
                     }
-                    (triangles, squares)
+                    let off_centre =
+                        ix.iter().map(|&u| d1[u].abs_diff(d2[u])).min().unwrap_or(usize::MAX);
+                    (off_centre, triangles, squares)
                 })
                 .collect();
             order.sort_by_key(|&g| (key[g], g));

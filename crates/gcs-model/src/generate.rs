@@ -179,6 +179,40 @@ pub fn triangulated_sphere(n: usize, seed: u64) -> System {
     framework(&format!("sphere-{n}-{seed}"), Dim::Three, &coords, &edges)
 }
 
+/// An articulated chain of `n` triangles in 2D (the witness paper's fig. 7 for `n = 3`):
+/// triangle `i` has points `2i`, `2i + 1`, `2i + 2`, consecutive triangles share a point (a
+/// hinge). `n` clusters, `n − 1` internal DOF.
+pub fn triangle_chain(n: usize, seed: u64) -> System {
+    let n = n.max(1);
+    let mut rng = SplitMix64::new(seed);
+    let points = 2 * n + 1;
+    let coords: Vec<Vec<i64>> = (0..points as i64)
+        .map(|i| vec![10 * i + rng.range(-3, 3), if i % 2 == 0 { 0 } else { 8 } + rng.range(-3, 3)])
+        .collect();
+    let mut edges = Vec::new();
+    for t in 0..n {
+        let (a, b, c) = (2 * t, 2 * t + 1, 2 * t + 2);
+        edges.extend([(a, b), (b, c), (a, c)]);
+    }
+    framework(&format!("triangle-chain-{n}"), Dim::Two, &coords, &edges)
+}
+
+/// A triangulated strip in 2D: `2n` points in two rows, consecutive quads split by a
+/// diagonal — rigid, no redundancy (`2·2n − 3` bars), and W-decomposable at every diagonal.
+pub fn strip(n: usize, seed: u64) -> System {
+    let n = n.max(2);
+    let mut rng = SplitMix64::new(seed);
+    let coords: Vec<Vec<i64>> = (0..2 * n as i64)
+        .map(|i| vec![10 * (i / 2) + rng.range(-3, 3), 10 * (i % 2) + rng.range(-3, 3)])
+        .collect();
+    let mut edges = vec![(0, 1)];
+    for q in 0..n - 1 {
+        let (a, b, c, d) = (2 * q, 2 * q + 1, 2 * q + 2, 2 * q + 3);
+        edges.extend([(a, c), (b, d), (c, d), if q % 2 == 0 { (a, d) } else { (b, c) }]);
+    }
+    framework(&format!("strip-{n}"), Dim::Two, &coords, &edges)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -195,6 +229,10 @@ mod tests {
             assert_eq!(s.constraints().len(), 3 * n - 6);
             assert_eq!(s.naive_dof(), 6);
         }
+        let c = triangle_chain(5, 1);
+        assert_eq!((c.entities().len(), c.constraints().len()), (11, 15));
+        let s = strip(6, 1);
+        assert_eq!(s.constraints().len(), 2 * 12 - 3);
         let r = rectangles(10);
         assert_eq!(r.naive_dof(), 0);
         assert_eq!(r.constraints().len(), 70);

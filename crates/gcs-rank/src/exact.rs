@@ -303,6 +303,27 @@ fn certified(
     rows: &[SparseRow<BigRational>],
     track: bool,
 ) -> Option<(RowAnalysis<BigRational>, Proof)> {
+    // Without dependencies there is nothing to lift: the pivots found modulo p prove that every
+    // row is independent over ℚ. Tracking combinations costs much more than the elimination
+    // (they fill in), so look first.
+    {
+        let mut images = Vec::with_capacity(rows.len());
+        for row in rows {
+            images.push(row.map(ModP::from_rational).ok()?);
+        }
+        let quick: RowAnalysis<ModP> = analyse_rows(ncols, images, EchelonOptions::default());
+        if quick.outcomes.iter().all(Insertion::is_independent) {
+            let outcomes = quick
+                .outcomes
+                .iter()
+                .map(|o| Insertion::Independent { pivot: o.pivot().unwrap_or(0) })
+                .collect();
+            return Some((
+                RowAnalysis { rank: quick.rank, outcomes },
+                Proof::ModularCertified { prime: ModP::PRIME },
+            ));
+        }
+    }
     let first: RowAnalysis<ModP> = modular_pass(ncols, rows)?;
     let mut lifted: Vec<Option<Vec<(usize, BigRational)>>> = vec![None; rows.len()];
     let mut pending: Vec<Lift> = Vec::new();
