@@ -7,10 +7,11 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use gcs_rank::{
-    BigRational, EchelonOptions, Field, ModP, SparseRow, analyse_rows, analyse_rows_exact,
+    BigRational, EchelonOptions, Field, ModP, Rat, SparseRow, analyse_rows, analyse_rows_exact,
     float_rank_qr,
 };
 
@@ -49,7 +50,78 @@ fn backend<F: Field>(label: &str, ncols: usize, rows: &[SparseRow<BigRational>])
     analysis.rank
 }
 
+/// Times `analyse_rows` over `F` with combinations.
+fn tracked<F: Field>(label: &str, ncols: usize, rows: &[SparseRow<BigRational>]) {
+    let images: Vec<SparseRow<F>> = common::to_field(rows);
+    let (t, analysis) =
+        best(|| analyse_rows(ncols, images.iter().cloned(), EchelonOptions::tracked()));
+    println!("  {label:<34} {}   rank {}", ms(t), analysis.rank);
+}
+
+/// Small fractions like the coordinates of a sketched witness: `n/d`, `|n| ≤ 20`, `d ≤ 12`.
+fn small_fractions<F: Field>(count: usize, seed: u64) -> Vec<F> {
+    let mut rng = common::SplitMix(seed);
+    (0..count)
+        .map(|_| {
+            let n = rng.below(41) as i64 - 20;
+            let d = rng.below(12) as i64 + 1;
+            F::from_rational(&common::frac(n, d)).expect("exact")
+        })
+        .collect()
+}
+
+/// `OPS / 2` steps of `acc = acc + a·b` over small fractions (one product, one sum each).
+fn mixed_add_mul<F: Field>(pool: &[F]) -> F {
+    let mut acc = F::zero();
+    for i in 0..OPS / 2 {
+        let product = pool[i % pool.len()].mul(&pool[(7 * i + 3) % pool.len()]);
+        acc = acc.add(&product);
+    }
+    acc
+}
+
+/// `OPS / 16` dot products of length 8 (8 products, 8 sums each) accumulated with
+/// `sub_mul_assign`, the shape of a dual-number gradient or an elimination step.
+fn dot_products<F: Field>(pool: &[F]) -> F {
+    let mut total = F::zero();
+    let n = pool.len() - 16;
+    for i in 0..OPS / 16 {
+        let (x, y) = (&pool[i % n..i % n + 8], &pool[(5 * i + 1) % n..(5 * i + 1) % n + 8]);
+        let mut dot = F::zero();
+        for (a, b) in x.iter().zip(y) {
+            dot.sub_mul_assign(a, b);
+        }
+        total = total.add(&dot);
+    }
+    total
+}
+
+/// Number of field operations in each micro-benchmark.
+const OPS: usize = 1_000_000;
+
+/// Times the micro-benchmarks over `F`; returns the two results.
+fn micro<F: Field + std::fmt::Display>(label: &str) -> (String, String) {
+    let pool: Vec<F> = small_fractions(1021, 3);
+    let (t_mixed, mixed) = best(|| mixed_add_mul(black_box(&pool)));
+    let (t_dot, dot) = best(|| dot_products(black_box(&pool)));
+    let per_op = |d: Duration| d.as_secs_f64() * 1e9 / OPS as f64;
+    println!(
+        "  {label:<34} {}   {}   ({:.1} / {:.1} ns per operation)",
+        ms(t_mixed),
+        ms(t_dot),
+        per_op(t_mixed),
+        per_op(t_dot)
+    );
+    (mixed.to_string(), dot.to_string())
+}
+
 fn main() {
+    println!("10^6 operations on small fractions (|n| <= 20, d <= 12)");
+    println!("  {:<34} {:>13}   {:>13}", "backend", "acc += a*b", "8-term dots");
+    let big = micro::<BigRational>("BigRational");
+    let rat = micro::<Rat>("Rat");
+    assert_eq!(big, rat, "the two rationals disagree");
+
     let per_row: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(6);
     let n = 200;
     let rows = common::random_sparse(n, per_row, 10, 7);
@@ -65,6 +137,7 @@ fn main() {
     let r_rug = backend::<rug::Rational>("Echelon<rug::Rational>", n, &rows).to_string();
     #[cfg(not(feature = "rug"))]
     let r_rug = "n/a (feature off)";
+    let r_rat = backend::<Rat>("Echelon<Rat>", n, &rows);
     let r_num = backend::<BigRational>("Echelon<BigRational>", n, &rows);
     let float_rows: Vec<SparseRow<f64>> = common::to_field(&rows);
     let (t, r_qr) = best(|| float_rank_qr(n, &float_rows, 1e-9));
@@ -73,8 +146,8 @@ fn main() {
     let (t_tracked, _) = best(|| analyse_rows_exact(n, &rows, true).expect("exact"));
     println!("  {:<34} {}   {}", "analyse_rows_exact", ms(t_plain), ms(t_tracked));
     println!(
-        "  ranks: modp {r_modp}, f64 {r_float}, rug {r_rug}, num {r_num}, qr {r_qr}, exact {} \
-         ({proof})",
+        "  ranks: modp {r_modp}, f64 {r_float}, rug {r_rug}, rat {r_rat}, num {r_num}, qr {r_qr}, \
+         exact {} ({proof})",
         exact.rank
     );
 
@@ -91,6 +164,8 @@ fn main() {
         let (t, analysis) = best(|| analyse_rows(ncols, images.iter().cloned(), options.clone()));
         println!("  {label:<34} {}   rank {}", ms(t), analysis.rank);
     }
+    tracked::<Rat>("Echelon<Rat>, combos", ncols, &block_rows);
+    tracked::<BigRational>("Echelon<BigRational>, combos", ncols, &block_rows);
     let (t, (exact, proof)) = best(|| analyse_rows_exact(ncols, &block_rows, true).expect("exact"));
     println!("  {:<34} {}   rank {} ({proof})", "analyse_rows_exact, combos", ms(t), exact.rank);
 }

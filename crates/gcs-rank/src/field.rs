@@ -5,6 +5,7 @@ use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
+use crate::Rat;
 use crate::error::{RankError, describe};
 
 /// A field with exact arithmetic, or `f64`.
@@ -14,11 +15,12 @@ use crate::error::{RankError, describe};
 /// ([`EchelonOptions::tolerance`](crate::EchelonOptions::tolerance)). Arithmetic takes its
 /// operands by reference so that big rationals are not cloned needlessly.
 ///
-/// Implemented for [`BigRational`] (`"rational"`), [`ModP`](crate::ModP) and
-/// [`ModPrime`](crate::ModPrime) (`"modp"`), `f64` (`"float"`) and, with the `rug` feature,
-/// `rug::Rational` (`"rug"`).
+/// Implemented for [`BigRational`] (`"rational"`), [`Rat`] (`"rat"`), [`ModP`](crate::ModP)
+/// and [`ModPrime`](crate::ModPrime) (`"modp"`), `f64` (`"float"`) and, with the `rug`
+/// feature, `rug::Rational` (`"rug"`).
 pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
-    /// Short name of the backend, for reports: `"rational"`, `"rug"`, `"modp"` or `"float"`.
+    /// Short name of the backend, for reports: `"rational"`, `"rat"`, `"rug"`, `"modp"` or
+    /// `"float"`.
     const NAME: &'static str;
     /// Whether arithmetic is exact (`false` only for `f64`).
     const EXACT: bool;
@@ -36,6 +38,15 @@ pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
     /// [`RankError::DenominatorDivisibleByPrime`] in a prime field whose modulus divides the
     /// denominator; [`RankError::NotRepresentable`] for `f64` when the value overflows.
     fn from_rational(q: &BigRational) -> Result<Self, RankError>;
+    /// The image of a [`Rat`]; the same as [`Field::from_rational`] of its value, without big
+    /// integers when it is small (the prime fields, `f64`, [`BigRational`] and [`Rat`]
+    /// override it).
+    ///
+    /// # Errors
+    /// Those of [`Field::from_rational`].
+    fn from_rat(q: &Rat) -> Result<Self, RankError> {
+        Self::from_rational(&q.big_cow())
+    }
     /// `self + rhs`.
     fn add(&self, rhs: &Self) -> Self;
     /// `self - rhs`.
@@ -77,6 +88,10 @@ impl Field for BigRational {
         Ok(q.clone())
     }
 
+    fn from_rat(q: &Rat) -> Result<Self, RankError> {
+        Ok(q.to_big())
+    }
+
     fn add(&self, rhs: &Self) -> Self {
         self + rhs
     }
@@ -113,7 +128,7 @@ impl Field for BigRational {
 /// `a * b` as a numerator and a positive denominator in lowest terms, cancelling across
 /// (`gcd(a.numer, b.denom)` and `gcd(b.numer, a.denom)`) so that no gcd of the full product is
 /// needed; integer operands skip the gcds.
-fn reduced_product(a: &BigRational, b: &BigRational) -> (BigInt, BigInt) {
+pub(crate) fn reduced_product(a: &BigRational, b: &BigRational) -> (BigInt, BigInt) {
     let (an, ad) = (a.numer(), a.denom());
     let (bn, bd) = (b.numer(), b.denom());
     if ad.is_one() && bd.is_one() {
@@ -129,7 +144,7 @@ fn reduced_product(a: &BigRational, b: &BigRational) -> (BigInt, BigInt) {
 
 /// `x -= p / q` for `p / q` in lowest terms with `q > 0`, by Knuth's method (TAOCP 4.5.1):
 /// only the gcd of the two denominators and one small gcd are computed.
-fn subtract_fraction(x: &mut BigRational, p: BigInt, q: BigInt) {
+pub(crate) fn subtract_fraction(x: &mut BigRational, p: BigInt, q: BigInt) {
     let (n, d) =
         std::mem::replace(x, BigRational::new_raw(BigInt::zero(), BigInt::one())).into_raw();
     let (numer, denom) = if d.is_one() && q.is_one() {
@@ -181,6 +196,11 @@ impl Field for f64 {
             Some(v) if v.is_finite() => Ok(v),
             _ => Err(RankError::NotRepresentable { field: Self::NAME, value: describe(q) }),
         }
+    }
+
+    fn from_rat(q: &Rat) -> Result<Self, RankError> {
+        // A small value is at most 2^63 in magnitude: always finite.
+        if q.is_small() { Ok(q.to_f64()) } else { Self::from_rational(&q.big_cow()) }
     }
 
     fn add(&self, rhs: &Self) -> Self {
@@ -243,6 +263,10 @@ mod tests {
         let huge = BigRational::from_integer(BigInt::from(10).pow(400u32));
         assert!(matches!(f64::from_rational(&huge), Err(RankError::NotRepresentable { .. })));
         assert_eq!(f64::from_rational(&q(-3, 4)), Ok(-0.75));
+        assert_eq!(f64::from_rat(&Rat::from(&huge)), f64::from_rational(&huge));
+        assert_eq!(f64::from_rat(&Rat::new(-3, 4).unwrap()), Ok(-0.75));
+        assert_eq!(BigRational::from_rat(&Rat::new(-3, 4).unwrap()), Ok(q(-3, 4)));
+        assert_eq!(BigRational::from_rat(&Rat::from(&huge)), Ok(huge));
     }
 
     #[test]

@@ -4,8 +4,8 @@
 use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
 
-use crate::Field;
 use crate::error::{RankError, describe};
+use crate::{Field, Rat};
 
 /// An integer modulo the Mersenne prime `2^61 − 1`, stored reduced in `[0, PRIME)`.
 ///
@@ -65,6 +65,16 @@ fn mersenne_reduce(x: u128) -> u64 {
     let folded = (x as u64 & P) + (x >> 61) as u64; // < 2^62
     let folded = (folded & P) + (folded >> 61); // ≤ 2^61
     if folded >= P { folded - P } else { folded }
+}
+
+/// The residue of the small rational `n/d` (`d > 0`) modulo `p`, in machine words.
+fn small_rational_mod(q: &Rat, n: i64, d: i64, p: u64) -> Result<u64, RankError> {
+    let d = d as u64 % p;
+    if d == 0 {
+        return Err(RankError::DenominatorDivisibleByPrime { prime: p, value: describe(q) });
+    }
+    let n = (n as i128).rem_euclid(p as i128) as u128;
+    Ok(((n * inv_mod(d, p) as u128) % p as u128) as u64)
 }
 
 fn rational_mod(q: &BigRational, p: u64) -> Result<u64, RankError> {
@@ -144,6 +154,13 @@ macro_rules! prime_field_common {
             rational_mod(q, $p).map($ctor)
         }
 
+        fn from_rat(q: &Rat) -> Result<Self, RankError> {
+            match q.as_small() {
+                Some((n, d)) => small_rational_mod(q, n, d, $p).map($ctor),
+                None => rational_mod(&q.big_cow(), $p).map($ctor),
+            }
+        }
+
         fn add(&self, rhs: &Self) -> Self {
             $ctor(add_mod(self.0, rhs.0, $p))
         }
@@ -191,6 +208,8 @@ impl<const P: u64> Field for ModPrime<P> {
 
 #[cfg(test)]
 mod tests {
+    use num_traits::One;
+
     use super::*;
 
     type Big = ModPrime<18_446_744_073_709_551_557>; // 2^64 − 59
@@ -237,5 +256,31 @@ mod tests {
             ModP::from_rational(&bad),
             Err(RankError::DenominatorDivisibleByPrime { prime: ModP::PRIME, .. })
         ));
+    }
+
+    #[test]
+    fn rats_map_like_their_big_rational_values() {
+        let p = ModP::PRIME as i64;
+        let big = BigRational::new(BigInt::from(3).pow(80), BigInt::from(7).pow(30));
+        let values = [
+            Rat::new(-3, 7).unwrap(),
+            Rat::new(i64::MIN, i64::MAX).unwrap(),
+            Rat::new(i64::MAX, 2 * p).unwrap(),
+            Rat::new(5, p - 1).unwrap(),
+            Rat::from(-p),
+            Rat::from(&big),
+            Rat::ZERO,
+        ];
+        for q in &values {
+            assert_eq!(ModP::from_rat(q), ModP::from_rational(&q.to_big()), "{q}");
+            assert_eq!(Big::from_rat(q), Big::from_rational(&q.to_big()), "{q}");
+        }
+        for bad in [Rat::new(1, p).unwrap(), Rat::new(-7, 3 * p).unwrap()] {
+            let error = ModP::from_rat(&bad).unwrap_err();
+            assert_eq!(error, ModP::from_rational(&bad.to_big()).unwrap_err());
+        }
+        let bad = Rat::from(BigRational::new(BigInt::one(), BigInt::from(ModP::PRIME).pow(2)));
+        assert!(!bad.is_small());
+        assert!(matches!(ModP::from_rat(&bad), Err(RankError::DenominatorDivisibleByPrime { .. })));
     }
 }

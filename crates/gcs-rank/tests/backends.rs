@@ -1,5 +1,5 @@
-//! One harness, many code paths: every matrix goes through every backend (rational, rug with
-//! the feature, two prime fields, f64 with a tolerance, the certified exact path, faer's QR),
+//! One harness, many code paths: every matrix goes through every backend (rational, `Rat`, rug
+//! with the feature, two prime fields, f64 with a tolerance, the certified exact path, faer's QR),
 //! which must agree on the rank, on which rows are dependent and, for the exact backends, on
 //! the combinations.
 
@@ -7,8 +7,8 @@ mod common;
 
 use common::{blocks, frac, int, kite, product, random_sparse, row, to_field};
 use gcs_rank::{
-    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, ModPrime, Proof, RowAnalysis,
-    SECOND_PRIME, SparseRow, analyse_rows, analyse_rows_exact, float_rank_qr,
+    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, ModPrime, Proof, Rat,
+    RowAnalysis, SECOND_PRIME, SparseRow, analyse_rows, analyse_rows_exact, float_rank_qr,
 };
 use num_traits::ToPrimitive;
 
@@ -101,6 +101,16 @@ fn check_case(
             assert!(Field::is_zero(&r.dot(v)), "{case}: row {i} · kernel vector {k} ≠ 0");
         }
     }
+
+    let rat = analyse_rows::<Rat>(ncols, to_field(rows), EchelonOptions::tracked());
+    same_outcomes(case, "rat", &reference, &rat, |q| Rat::from(q));
+    let mut rat_echelon = Echelon::<Rat>::new(ncols, EchelonOptions::default());
+    for r in to_field::<Rat>(rows) {
+        rat_echelon.insert(r);
+    }
+    let rat_kernel: Vec<SparseRow<BigRational>> =
+        rat_echelon.kernel_basis().iter().map(|v| v.map(BigRational::from_rat).unwrap()).collect();
+    assert_eq!(rat_kernel, kernel, "{case}/rat: kernel");
 
     let modp = analyse_rows::<ModP>(ncols, to_field(rows), EchelonOptions::tracked());
     same_outcomes(case, "modp", &reference, &modp, |q| ModP::from_rational(q).unwrap());

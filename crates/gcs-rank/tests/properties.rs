@@ -4,7 +4,7 @@ mod common;
 
 use common::to_field;
 use gcs_rank::{
-    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, RowAnalysis, SparseRow,
+    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Rat, RowAnalysis, SparseRow,
     analyse_rows, analyse_rows_exact, float_rank_qr,
 };
 use num_bigint::BigInt;
@@ -129,6 +129,15 @@ proptest! {
             prop_assert_eq!(back, expected);
             prop_assert_eq!(rug.rank, exact.rank);
         }
+
+        let rat = analyse_rows::<Rat>(ncols, to_field(&rows), EchelonOptions::tracked());
+        let back: Vec<Option<Vec<(usize, BigRational)>>> = rat.outcomes.iter()
+            .map(|o| o.combination().map(|c| c.iter().map(|(i, q)| (*i, q.to_big())).collect()))
+            .collect();
+        let expected: Vec<Option<Vec<(usize, BigRational)>>> =
+            exact.outcomes.iter().map(|o| o.combination().map(<[_]>::to_vec)).collect();
+        prop_assert_eq!(back, expected);
+        prop_assert_eq!(rat.rank, exact.rank);
 
         let (certified, _) = analyse_rows_exact(ncols, &rows, true).unwrap();
         prop_assert_eq!(&certified, &exact);
