@@ -482,18 +482,38 @@ pub(crate) fn finish_clusters<F>(
     sub: &crate::rigid::Subsystem<F>,
     raw: Vec<crate::rigid::RawCluster>,
 ) -> Vec<Cluster> {
+    // Segments join the clusters holding both their points.
+    let mut of_entity: std::collections::HashMap<EntityIdx, Vec<usize>> = Default::default();
+    for (i, r) in raw.iter().enumerate() {
+        for e in &r.entities {
+            of_entity.entry(*e).or_default().push(i);
+        }
+    }
+    let mut segments: Vec<Vec<EntityIdx>> = vec![Vec::new(); raw.len()];
+    let mut lonely: Vec<EntityIdx> = Vec::new();
+    for e in system.entity_indices() {
+        if let Some((a, b)) = system.segment_points(e) {
+            let (ca, cb) = (of_entity.get(&a), of_entity.get(&b));
+            let both: Vec<usize> = ca
+                .into_iter()
+                .flatten()
+                .copied()
+                .filter(|c| cb.is_some_and(|l| l.contains(c)))
+                .collect();
+            if both.is_empty() {
+                lonely.push(e);
+            }
+            for c in both {
+                segments[c].push(e);
+            }
+        }
+    }
     let mut out: Vec<Cluster> = raw
         .into_iter()
-        .map(|r| {
+        .zip(segments)
+        .map(|(r, segs)| {
             let mut entities = r.entities.clone();
-            for e in system.entity_indices() {
-                if let Some((a, b)) = system.segment_points(e)
-                    && r.entities.contains(&a)
-                    && r.entities.contains(&b)
-                {
-                    entities.push(e);
-                }
-            }
+            entities.extend(segs);
             entities.sort_unstable();
             let constraints = r
                 .groups
@@ -506,14 +526,12 @@ pub(crate) fn finish_clusters<F>(
             Cluster { entities, constraints, grounded: r.grounded }
         })
         .collect();
-    for e in system.entity_indices() {
-        if system.segment_points(e).is_some() && !out.iter().any(|c| c.entities.contains(&e)) {
-            let constraints = system
-                .constraint_indices()
-                .filter(|c| system.constraint(*c).shape.entities() == vec![e])
-                .collect();
-            out.push(Cluster { entities: vec![e], constraints, grounded: false });
-        }
+    for e in lonely {
+        let constraints = system
+            .constraint_indices()
+            .filter(|c| system.constraint(*c).shape.entities() == vec![e])
+            .collect();
+        out.push(Cluster { entities: vec![e], constraints, grounded: false });
     }
     out.sort_by(|a, b| a.entities.cmp(&b.entities));
     out

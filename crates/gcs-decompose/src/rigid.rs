@@ -516,19 +516,28 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             }
         }
         let frame = self.frame;
+        // Groups of each cluster: those whose objects are all in it (found through the short
+        // per-object cluster lists, not by scanning every cluster).
+        let mut groups_of: Vec<Vec<usize>> = vec![Vec::new(); clusters.len()];
+        for (g, objs) in self.group_objs.iter().enumerate() {
+            let Some(first) = objs.first() else { continue };
+            for &c in &of_obj[*first] {
+                if objs.iter().all(|o| of_obj[*o].contains(&c)) {
+                    groups_of[c].push(g);
+                }
+            }
+        }
         clusters
             .into_iter()
-            .filter(|c| c.iter().any(|o| Some(*o) != frame))
-            .map(|c| {
+            .zip(groups_of)
+            .filter(|(c, _)| c.iter().any(|o| Some(*o) != frame))
+            .map(|(c, groups)| {
                 let mut entities: Vec<EntityIdx> = c
                     .iter()
                     .filter(|o| Some(**o) != frame)
                     .map(|o| self.sub.entities[*o])
                     .collect();
                 entities.sort_unstable();
-                let groups = (0..self.sub.groups.len())
-                    .filter(|g| self.group_objs[*g].iter().all(|o| c.contains(o)))
-                    .collect();
                 RawCluster { entities, groups, grounded: frame.is_some_and(|f| c.contains(&f)) }
             })
             .collect()

@@ -27,7 +27,6 @@ use std::collections::BinaryHeap;
 
 use gcs_model::rng::SplitMix64;
 use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
-use num_traits::{One, Zero};
 
 use crate::dual::Dual;
 use crate::equations::{self, Local};
@@ -81,7 +80,7 @@ fn is_exact_kind(kind: ConstraintKind) -> bool {
 pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64) -> (Vec<Q>, f64) {
     let mut scale: f64 = 0.0;
     for e in system.entity_indices() {
-        if let Some(s) = crate::sketch::sketch_coords(system, e)
+        if let Some(s) = crate::sketch::sketch_coords_in::<Q>(system, e)
             && layout.repr(e).is_some_and(|r| !r.homogeneous())
         {
             for x in &s {
@@ -90,12 +89,12 @@ pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64
         }
     }
     let scale = if scale > 0.0 { scale } else { 10.0 };
-    let mut pref = vec![Q::zero(); layout.ncols()];
+    let mut pref = vec![Q::ZERO; layout.ncols()];
     let n = system.dim().coords();
     for e in system.entity_indices() {
         let Some(repr) = layout.repr(e) else { continue };
         let cols = layout.columns(e);
-        let s = crate::sketch::sketch_coords(system, e).unwrap_or_else(|| {
+        let s = crate::sketch::sketch_coords_in::<Q>(system, e).unwrap_or_else(|| {
             let mut rnd = |k: usize| -> Vec<Q> {
                 (0..k).map(|_| qla::approx(scale * (2.0 * rng.unit_f64() - 1.0), 1000)).collect()
             };
@@ -104,11 +103,7 @@ pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64
                 Repr::Line2 => {
                     let (p, q) = (rnd(2), rnd(2));
                     let l = crate::sketch::line2_through(&p, &q);
-                    if l.iter().all(Zero::is_zero) {
-                        vec![Q::one(), Q::zero(), Q::zero()]
-                    } else {
-                        l
-                    }
+                    if l.iter().all(Q::is_zero) { vec![Q::ONE, Q::ZERO, Q::ZERO] } else { l }
                 }
                 Repr::Line3 => crate::sketch::line3_through(&rnd(3), &rnd(3)),
                 Repr::Plane => crate::sketch::plane_through(&rnd(3), &rnd(3)),
@@ -293,10 +288,10 @@ impl Placer<'_> {
         let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
         let row = |i: usize, j: usize| {
             // normal_i u_j − normal_j u_i = 0
-            let mut g = vec![Q::zero(); n];
+            let mut g = vec![Q::ZERO; n];
             g[i] = u[j].clone();
             g[j] = -u[i].clone();
-            (g, Q::zero())
+            (g, Q::ZERO)
         };
         if k == 2 {
             vec![row(0, 1)]
@@ -324,7 +319,7 @@ impl Placer<'_> {
         let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
         // (x − o)_i u_j − (x − o)_j u_i = 0
         let row = |i: usize, j: usize| {
-            let mut g = vec![Q::zero(); n];
+            let mut g = vec![Q::ZERO; n];
             g[i] = u[j].clone();
             g[j] = -u[i].clone();
             let rhs = &other[i] * &u[j] - &other[j] * &u[i];
@@ -354,7 +349,7 @@ impl Placer<'_> {
         // Linearise every equation at the preference, and at a shifted point to tell linear
         // equations from quadratic ones.
         let delta: Vec<Q> =
-            (0..n).map(|_| self.random_small() + Q::new(1.into(), 7.into())).collect();
+            (0..n).map(|_| self.random_small() + Q::new(1, 7).unwrap_or(Q::ONE)).collect();
         let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
         let _ = &mut linear;
         let mut quads: Vec<(AffineMap, AffineMap)> = Vec::new();
@@ -366,7 +361,7 @@ impl Placer<'_> {
                 let g = &r0.1;
                 let predicted = &r0.0 + &qla::dot(g, &delta);
                 if predicted == r1.0 {
-                    if g.iter().all(Zero::is_zero) {
+                    if g.iter().all(Q::is_zero) {
                         if !r0.0.is_zero() {
                             return false;
                         }
@@ -388,10 +383,10 @@ impl Placer<'_> {
         if self.layout.repr(e) == Some(Repr::Line3) {
             // The Plücker relation d·m = 0 is ¼(|d + m|² − |d − m|²).
             let unit = |i: usize, j: usize, sj: i64| -> (Vec<Q>, Q) {
-                let mut g = vec![Q::zero(); 6];
-                g[i] = Q::one();
-                g[j] = Q::from_integer(sj.into());
-                (g, Q::zero())
+                let mut g = vec![Q::ZERO; 6];
+                g[i] = Q::ONE;
+                g[j] = Q::from(sj as i64);
+                (g, Q::ZERO)
             };
             let plus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, 1)).collect() };
             let minus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, -1)).collect() };
@@ -455,7 +450,7 @@ impl Placer<'_> {
                 let local =
                     Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
                 let none = |_: EntityIdx| None;
-                let sketch = |b: EntityIdx| crate::sketch::sketch_coords(self.system, b);
+                let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
                 let c = self.system.constraint(ci);
                 let cand = if c.kind == ConstraintKind::Fix {
                     equations::candidates(self.system, c, self.variant[ci.index()], &local, &sketch)
@@ -489,7 +484,7 @@ impl Placer<'_> {
                 self.coords[col] = v.clone();
             }
             let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
-            let sketch = |b: EntityIdx| crate::sketch::sketch_coords(self.system, b);
+            let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
             let cand = equations::candidates(self.system, c, variant, &local, &sketch);
             cand.rows.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
         };
@@ -560,10 +555,9 @@ impl Placer<'_> {
             *ti += r * qla::approx(norm, 1_000_000);
         }
         let x = space.point(&t);
-        if homogeneous && x.iter().all(Zero::is_zero) {
+        if homogeneous && x.iter().all(Q::is_zero) {
             // The preference projects to zero: take a random element of the subspace.
-            let t: Vec<Q> =
-                (0..space.basis.len()).map(|_| self.random_small() + Q::one()).collect();
+            let t: Vec<Q> = (0..space.basis.len()).map(|_| self.random_small() + Q::ONE).collect();
             return Some(space.point(&t));
         }
         Some(x)
@@ -616,8 +610,8 @@ impl Placer<'_> {
             let mut sys = linear.clone();
             for i in 0..k {
                 // P_i(x) − Σ_j R_ij M_j(x) = 0
-                let mut row = p.rows.get(i).map_or(vec![Q::zero(); n], |r| r.0.clone());
-                let mut rhs = p.rows.get(i).map_or(Q::zero(), |r| -r.1.clone());
+                let mut row = p.rows.get(i).map_or(vec![Q::ZERO; n], |r| r.0.clone());
+                let mut rhs = p.rows.get(i).map_or(Q::ZERO, |r| -r.1.clone());
                 for (j, mrow) in m.rows.iter().enumerate() {
                     for (a, b) in row.iter_mut().zip(&mrow.0) {
                         *a -= &r[i][j] * b;
@@ -670,7 +664,7 @@ impl Placer<'_> {
         let coef = |map: &AffineMap| {
             let a: Vec<Q> = map.rows.iter().map(|(g, _)| qla::dot(g, &w)).collect();
             let b: Vec<Q> = map.rows.iter().map(|(g, c)| qla::dot(g, &x0) + c).collect();
-            (qla::dot(&a, &a), qla::dot(&a, &b) * Q::from_integer(2.into()), qla::dot(&b, &b))
+            (qla::dot(&a, &a), qla::dot(&a, &b) * Q::from(2 as i64), qla::dot(&b, &b))
         };
         let (pa, pb, pc) = coef(p);
         let (ma, mb, mc) = coef(m);
@@ -678,7 +672,7 @@ impl Placer<'_> {
         let t_pref = {
             let ww = qla::dot(&w, &w);
             let d: Vec<Q> = pref.iter().zip(&x0).map(|(u, v)| u - v).collect();
-            if ww.is_zero() { Q::zero() } else { qla::dot(&d, &w) / ww }
+            if ww.is_zero() { Q::ZERO } else { qla::dot(&d, &w) / ww }
         };
         let roots: Vec<Q> = if a.is_zero() {
             if b.is_zero() {
@@ -686,9 +680,9 @@ impl Placer<'_> {
             }
             vec![-c / b]
         } else {
-            let disc = &b * &b - Q::from_integer(4.into()) * &a * &c;
+            let disc = &b * &b - Q::from(4 as i64) * &a * &c;
             let s = qla::sqrt(&disc)?;
-            let two_a = &a * Q::from_integer(2.into());
+            let two_a = &a * Q::from(2 as i64);
             vec![(-&b + &s) / &two_a, (-&b - &s) / &two_a]
         };
         let t = roots.into_iter().min_by_key(|t| {
@@ -714,7 +708,7 @@ impl Placer<'_> {
         if k == 1 {
             let same = pv[0] * mv[0] >= 0.0;
             let s = if attempt.is_multiple_of(2) { same } else { !same };
-            return vec![vec![if s { Q::one() } else { -Q::one() }]];
+            return vec![vec![if s { Q::ONE } else { -Q::ONE }]];
         }
         // A rotation (det +1: the product of two Householder reflections, exactly orthogonal
         // for rational vectors) taking M's direction near P's. Rotations, not single
@@ -753,7 +747,7 @@ impl Placer<'_> {
 /// Whether coordinates describe a degenerate entity: a line or plane without normal or
 /// direction, a circle or sphere of radius zero.
 fn degenerate(repr: Repr, x: &[Q]) -> bool {
-    let zero = |xs: &[Q]| xs.iter().all(Zero::is_zero);
+    let zero = |xs: &[Q]| xs.iter().all(Q::is_zero);
     match repr {
         Repr::Line2 => zero(&x[0..2]),
         Repr::Line3 | Repr::Plane => zero(&x[0..3]),
@@ -767,8 +761,7 @@ fn degenerate(repr: Repr, x: &[Q]) -> bool {
 /// the solution space.
 fn normal_is_free(space: &Affine, n: usize) -> bool {
     let k = n - 1;
-    let rows: Vec<(Vec<Q>, Q)> =
-        space.basis.iter().map(|v| (v[0..k].to_vec(), Q::zero())).collect();
+    let rows: Vec<(Vec<Q>, Q)> = space.basis.iter().map(|v| (v[0..k].to_vec(), Q::ZERO)).collect();
     // The rank of the normal parts of the basis: k minus the dimension of the solutions of
     // the transposed system is awkward here; count independent rows by elimination.
     rank(&rows, k) == k
@@ -790,8 +783,8 @@ fn rational_unit(w: &[f64], den: i64) -> Option<Vec<Q>> {
         return None;
     }
     let w: Vec<f64> = w.iter().map(|x| x / norm).collect();
-    let one = Q::one();
-    let two = Q::from_integer(2.into());
+    let one = Q::ONE;
+    let two = Q::from(2 as i64);
     if w.len() == 2 {
         // (cos θ, sin θ) = ((1 − t²), 2t)/(1 + t²), t = tan(θ/2); near θ = π use −t⁻¹ form.
         let flip = w[0] < 0.0;
@@ -816,7 +809,7 @@ fn rational_unit(w: &[f64], den: i64) -> Option<Vec<Q>> {
 }
 
 fn identity(k: usize) -> Vec<Vec<Q>> {
-    (0..k).map(|i| (0..k).map(|j| if i == j { Q::one() } else { Q::zero() }).collect()).collect()
+    (0..k).map(|i| (0..k).map(|j| if i == j { Q::ONE } else { Q::ZERO }).collect()).collect()
 }
 
 /// `x ↦ (λ·x + λ0) d`: an affine map into a fixed direction `d`, if it is one.
@@ -843,7 +836,7 @@ fn fixed_direction(map: &AffineMap) -> Option<(Vec<Q>, Vec<Q>, Q)> {
 fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>> {
     let (p, m) = q;
     let zero =
-        |map: &AffineMap| map.rows.iter().all(|(g, c)| c.is_zero() && g.iter().all(Zero::is_zero));
+        |map: &AffineMap| map.rows.iter().all(|(g, c)| c.is_zero() && g.iter().all(Q::is_zero));
     let as_rows = |map: &AffineMap| -> Vec<(Vec<Q>, Q)> {
         map.rows.iter().map(|(g, c)| (g.clone(), -c.clone())).collect()
     };
@@ -862,7 +855,7 @@ fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>>
     let mv = qla::dot(&lm, pref) + &lm0;
     let plus = qla::to_f64(&(&pv * &np - &mv * &l)).abs();
     let minus = qla::to_f64(&(&pv * &np + &mv * &l)).abs();
-    let sigma = if plus <= minus { Q::one() } else { -Q::one() };
+    let sigma = if plus <= minus { Q::ONE } else { -Q::ONE };
     let row: Vec<Q> = lp.iter().zip(&lm).map(|(a, b)| a * &np - &sigma * b * &l).collect();
     let rhs = -(&lp0 * &np - &sigma * &lm0 * &l);
     Some(vec![(row, rhs)])
@@ -929,8 +922,8 @@ impl AffineMap {
 
     /// The matrix `H` of the quadratic part of `|self|² − |other|²`.
     fn quadratic_form(&self, other: &AffineMap, n: usize) -> Vec<Vec<Q>> {
-        let mut h = vec![vec![Q::zero(); n]; n];
-        for (sign, map) in [(Q::one(), self), (-Q::one(), other)] {
+        let mut h = vec![vec![Q::ZERO; n]; n];
+        for (sign, map) in [(Q::ONE, self), (-Q::ONE, other)] {
             for (g, _) in &map.rows {
                 for i in 0..n {
                     for j in 0..n {
@@ -944,12 +937,12 @@ impl AffineMap {
 
     /// The linear part `g·x` and constant `c` of `|self|² − |other|²`.
     fn linear_part(&self, other: &AffineMap, n: usize) -> (Vec<Q>, Q) {
-        let mut g = vec![Q::zero(); n];
-        let mut c = Q::zero();
-        for (sign, map) in [(Q::one(), self), (-Q::one(), other)] {
+        let mut g = vec![Q::ZERO; n];
+        let mut c = Q::ZERO;
+        for (sign, map) in [(Q::ONE, self), (-Q::ONE, other)] {
             for (gi, ci) in &map.rows {
                 for (a, b) in g.iter_mut().zip(gi) {
-                    *a += &sign * b * ci * Q::from_integer(2.into());
+                    *a += &sign * b * ci * Q::from(2 as i64);
                 }
                 c += &sign * ci * ci;
             }

@@ -7,7 +7,7 @@
 //! against the rational rows.
 
 use gcs_model::{ConstraintIdx, ConstraintKind, Shape, System};
-use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, SparseRow};
+use gcs_rank::{Echelon, EchelonOptions, Field, SparseRow};
 
 use crate::dual::Dual;
 use crate::equations::{self, Local};
@@ -55,11 +55,11 @@ pub(crate) fn grad_row<F: Field>(d: &Dual<F>, cols: Option<&[usize]>) -> SparseR
 
 /// Whether a configuration satisfies the parameter-free constraints of a system exactly, and
 /// the plan if it does.
-pub fn plan(
+pub fn plan<F: Field>(
     system: &System,
     layout: &Layout,
-    witness: &[BigRational],
-    sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<BigRational>>,
+    witness: &[F],
+    sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<F>>,
 ) -> Result<Result<Plan, Unsatisfied>, JacobianError> {
     let mut out = Vec::with_capacity(system.constraints().len());
     for ci in system.constraint_indices() {
@@ -108,11 +108,11 @@ pub fn plan(
 /// Keeps `doc` candidate rows independent at the witness, modulo the internal rows of the
 /// entities involved; when there are not enough, fills up with the first dependent ones and
 /// marks the constraint singular.
-fn select(
+fn select<F: Field>(
     layout: &Layout,
     base: &[gcs_model::EntityIdx],
-    local: &Local<'_, BigRational>,
-    rows: &[Dual<BigRational>],
+    local: &Local<'_, F>,
+    rows: &[Dual<F>],
     doc: usize,
 ) -> ConstraintPlan {
     if rows.len() == doc {

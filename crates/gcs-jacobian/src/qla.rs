@@ -1,12 +1,10 @@
 //! Small dense exact linear algebra over ℚ for the constructive placement of one entity
 //! (a handful of unknowns), and rational approximations.
 
-use num_bigint::BigInt;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use gcs_rank::Rat;
 
-use gcs_rank::BigRational;
-
-pub(crate) type Q = BigRational;
+/// The exact rational of the placement: small values stay in machine words.
+pub(crate) type Q = Rat;
 
 /// The solution set `{x0 + N t}` of a linear system.
 #[derive(Clone, Debug)]
@@ -22,7 +20,7 @@ pub(crate) fn solve(n: usize, rows: &[(Vec<Q>, Q)]) -> Option<Affine> {
         .iter()
         .map(|(a, b)| {
             let mut r = a.clone();
-            r.resize(n, Q::zero());
+            r.resize(n, Q::ZERO);
             r.push(b.clone());
             r
         })
@@ -32,7 +30,7 @@ pub(crate) fn solve(n: usize, rows: &[(Vec<Q>, Q)]) -> Option<Affine> {
     for col in 0..n {
         let Some(p) = (r..m.len()).find(|&i| !m[i][col].is_zero()) else { continue };
         m.swap(r, p);
-        let inv = m[r][col].recip();
+        let inv = Q::ONE / &m[r][col];
         for v in m[r].iter_mut() {
             *v = &*v * &inv;
         }
@@ -54,14 +52,14 @@ pub(crate) fn solve(n: usize, rows: &[(Vec<Q>, Q)]) -> Option<Affine> {
     if m[r..].iter().any(|row| !row[n].is_zero()) {
         return None;
     }
-    let mut x0 = vec![Q::zero(); n];
+    let mut x0 = vec![Q::ZERO; n];
     for (i, &c) in pivots.iter().enumerate() {
         x0[c] = m[i][n].clone();
     }
     let mut basis = Vec::new();
     for f in (0..n).filter(|c| !pivots.contains(c)) {
-        let mut v = vec![Q::zero(); n];
-        v[f] = Q::one();
+        let mut v = vec![Q::ZERO; n];
+        v[f] = Q::ONE;
         for (i, &c) in pivots.iter().enumerate() {
             v[c] = -m[i][f].clone();
         }
@@ -95,7 +93,7 @@ impl Affine {
             })
             .collect();
         // The Gram matrix of a basis is invertible: a unique solution.
-        solve(k, &rows).map(|s| s.x0).unwrap_or_else(|| vec![Q::zero(); k])
+        solve(k, &rows).map(|s| s.x0).unwrap_or_else(|| vec![Q::ZERO; k])
     }
 }
 
@@ -105,28 +103,16 @@ pub(crate) fn dot(a: &[Q], b: &[Q]) -> Q {
 
 /// The rational square root of `q` when it has one.
 pub(crate) fn sqrt(q: &Q) -> Option<Q> {
-    if q.is_negative() {
-        return None;
-    }
-    let root = |n: &BigInt| {
-        let r = n.sqrt();
-        (&r * &r == *n).then_some(r)
-    };
-    Some(Q::new(root(q.numer())?, root(q.denom())?))
+    q.sqrt_exact()
 }
 
-/// The rational `round(x · den) / den`.
+/// The rational `round(x · den) / den` (0 for a non-finite `x`).
 pub(crate) fn approx(x: f64, den: i64) -> Q {
-    if !x.is_finite() {
-        return Q::zero();
-    }
-    let n = (x * den as f64).round();
-    let n = if n.abs() < 9e18 { n as i64 } else { 0 };
-    Q::new(BigInt::from(n), BigInt::from(den))
+    Q::from_f64_approx(x, den.max(1))
 }
 
 pub(crate) fn to_f64(q: &Q) -> f64 {
-    q.to_f64().unwrap_or(0.0)
+    q.to_f64()
 }
 
 /// Householder reflection `I − 2 v vᵀ / |v|²`: exactly orthogonal for any rational `v ≠ 0`.
@@ -135,14 +121,14 @@ pub(crate) fn reflection(v: &[Q]) -> Option<Vec<Vec<Q>>> {
     if vv.is_zero() {
         return None;
     }
-    let two = Q::from_integer(BigInt::from(2));
+    let two = Q::from(2i64);
     let k = v.len();
     Some(
         (0..k)
             .map(|i| {
                 (0..k)
                     .map(|j| {
-                        let id = if i == j { Q::one() } else { Q::zero() };
+                        let id = if i == j { Q::ONE } else { Q::ZERO };
                         id - &two * &v[i] * &v[j] / &vv
                     })
                     .collect()
@@ -163,7 +149,7 @@ mod tests {
     use super::*;
 
     fn q(n: i64) -> Q {
-        Q::from_integer(n.into())
+        Q::from(n as i64)
     }
 
     #[test]
@@ -174,7 +160,7 @@ mod tests {
         let t = s.project(&[q(0), q(0)]);
         assert_eq!(s.point(&t), vec![q(1), q(1)]);
         assert!(solve(1, &[(vec![q(1)], q(1)), (vec![q(2)], q(3))]).is_none());
-        assert_eq!(sqrt(&Q::new(9.into(), 4.into())), Some(Q::new(3.into(), 2.into())));
+        assert_eq!(sqrt(&Q::new(9, 4).unwrap()), Q::new(3, 2));
         assert_eq!(sqrt(&q(2)), None);
         let r = reflection(&[q(1), q(2), q(2)]).unwrap();
         let rt = matmul(&r, &r);

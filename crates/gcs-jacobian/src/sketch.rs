@@ -1,34 +1,34 @@
 //! The sketch in the layout's coordinates.
 
 use gcs_model::{EntityIdx, Geometry, System};
-use gcs_rank::BigRational;
+use gcs_rank::{BigRational, Field};
 
-fn cross(a: &[BigRational], b: &[BigRational]) -> Vec<BigRational> {
+fn cross<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
     vec![
-        &a[1] * &b[2] - &a[2] * &b[1],
-        &a[2] * &b[0] - &a[0] * &b[2],
-        &a[0] * &b[1] - &a[1] * &b[0],
+        a[1].mul(&b[2]).sub(&a[2].mul(&b[1])),
+        a[2].mul(&b[0]).sub(&a[0].mul(&b[2])),
+        a[0].mul(&b[1]).sub(&a[1].mul(&b[0])),
     ]
 }
 
 /// The homogeneous coordinates `(a, b, c)` of the 2D line through `p` and `q`.
-pub fn line2_through(p: &[BigRational], q: &[BigRational]) -> Vec<BigRational> {
-    vec![&p[1] - &q[1], &q[0] - &p[0], &p[0] * &q[1] - &q[0] * &p[1]]
+pub fn line2_through<F: Field>(p: &[F], q: &[F]) -> Vec<F> {
+    vec![p[1].sub(&q[1]), q[0].sub(&p[0]), p[0].mul(&q[1]).sub(&q[0].mul(&p[1]))]
 }
 
 /// The Plücker coordinates `(d, m)` of the 3D line through `p` and `q`: `d = q − p`,
 /// `m = p × q`.
-pub fn line3_through(p: &[BigRational], q: &[BigRational]) -> Vec<BigRational> {
-    let mut out: Vec<BigRational> = q.iter().zip(p).map(|(a, b)| a - b).collect();
+pub fn line3_through<F: Field>(p: &[F], q: &[F]) -> Vec<F> {
+    let mut out: Vec<F> = q.iter().zip(p).map(|(a, b)| a.sub(b)).collect();
     out.extend(cross(p, q));
     out
 }
 
 /// The coordinates `(n, −n·p)` of the plane through `p` with normal `n`.
-pub fn plane_through(p: &[BigRational], n: &[BigRational]) -> Vec<BigRational> {
-    let d: BigRational = n.iter().zip(p).map(|(a, b)| a * b).sum();
+pub fn plane_through<F: Field>(p: &[F], n: &[F]) -> Vec<F> {
+    let d = n.iter().zip(p).fold(F::zero(), |acc, (a, b)| acc.add(&a.mul(b)));
     let mut out = n.to_vec();
-    out.push(-d);
+    out.push(d.neg());
     out
 }
 
@@ -53,4 +53,9 @@ pub fn sketch_coords(system: &System, e: EntityIdx) -> Option<Vec<BigRational>> 
         }
         Geometry::Segment { .. } => None,
     }
+}
+
+/// [`sketch_coords`] in any field.
+pub fn sketch_coords_in<F: Field>(system: &System, e: EntityIdx) -> Option<Vec<F>> {
+    sketch_coords(system, e)?.iter().map(|q| F::from_rational(q).ok()).collect()
 }

@@ -16,7 +16,7 @@
 
 use gcs_model::rng::SplitMix64;
 use gcs_model::{EntityIdx, System};
-use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, ModP};
+use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, ModP, Rat};
 
 use crate::error::JacobianError;
 use crate::jacobian::{Jacobian, assemble};
@@ -80,8 +80,8 @@ pub struct Witness {
     pub sketch_rejected: Option<String>,
 }
 
-fn sketch_fn(system: &System) -> impl Fn(EntityIdx) -> Option<Vec<BigRational>> + '_ {
-    move |e| sketch_coords(system, e)
+fn sketch_fn(system: &System) -> impl Fn(EntityIdx) -> Option<Vec<Rat>> + '_ {
+    move |e| crate::sketch::sketch_coords_in(system, e)
 }
 
 impl Witness {
@@ -122,16 +122,14 @@ fn describe(system: &System, u: &Unsatisfied) -> String {
     }
 }
 
-/// The rank modulo the 61-bit prime of the Jacobian at `coords` (None when not a witness).
-fn rank_modp(system: &System, layout: &Layout, coords: &[BigRational], plan: &Plan) -> usize {
-    let w = Witness {
-        coords: coords.to_vec(),
-        source: WitnessSource::Generated,
-        plan: plan.clone(),
-        genericity_tested: false,
-        sketch_rejected: None,
+/// The rank modulo the 61-bit prime of the Jacobian at `coords` (0 when a coordinate has no
+/// image modulo the prime).
+fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan) -> usize {
+    let Ok(x) = coords.iter().map(ModP::from_rat).collect::<Result<Vec<ModP>, _>>() else {
+        return 0;
     };
-    let Ok(j) = w.jacobian::<ModP>(system, layout) else { return 0 };
+    let sketch = |e: EntityIdx| crate::sketch::sketch_coords_in::<ModP>(system, e);
+    let j = assemble(system, layout, plan, &x, &sketch);
     let mut e = Echelon::new(j.ncols, EchelonOptions::default());
     for r in j.rows {
         e.insert(r);
@@ -158,7 +156,7 @@ pub fn find_witness(
         .entity_indices()
         .all(|e| layout.repr(e).is_none() || sketch_coords(system, e).is_some());
     let mut sketch_rejected = None;
-    let mut best: Option<(Vec<BigRational>, Plan, usize, WitnessSource)> = None;
+    let mut best: Option<(Vec<Rat>, Plan, usize, WitnessSource)> = None;
     if has_sketch {
         match plan(system, layout, &pref, &sketch)? {
             Ok(p) => {
@@ -209,9 +207,13 @@ pub fn find_witness(
         }
     }
     match best {
-        Some((coords, plan, _, source)) => {
-            Ok(Witness { coords, source, plan, genericity_tested: tested, sketch_rejected })
-        }
+        Some((coords, plan, _, source)) => Ok(Witness {
+            coords: coords.iter().map(Rat::to_big).collect(),
+            source,
+            plan,
+            genericity_tested: tested,
+            sketch_rejected,
+        }),
         None => {
             let mut msg = failure.unwrap_or_else(|| "no placement found".into());
             if let Some(s) = &sketch_rejected {
