@@ -6,8 +6,8 @@ use gcs_jacobian::{
 };
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{
-    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Proof, RowAnalysis, SparseRow,
-    analyse_rows, analyse_rows_exact, float_rank_qr,
+    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Proof, Rat, RowAnalysis,
+    SparseRow, analyse_rows, analyse_rows_exact, float_rank_qr,
 };
 
 use crate::error::AnalysisError;
@@ -368,24 +368,14 @@ pub fn analyze_at(
             )?,
             "float",
         ),
+        // Exact rationals (with a machine-word fast path) for the rational backends, and for
+        // the exact one on systems small enough that rational fill-in stays cheap.
         Backend::Rational | Backend::Rug => (
-            clusters_in::<BigRational>(
-                system,
-                layout,
-                &witness,
-                EchelonOptions::default(),
-                options,
-            )?,
+            clusters_in::<Rat>(system, layout, &witness, EchelonOptions::default(), options)?,
             "rational",
         ),
-        Backend::Exact if layout.ncols() <= EXACT_CLUSTER_LIMIT => (
-            clusters_in::<BigRational>(
-                system,
-                layout,
-                &witness,
-                EchelonOptions::default(),
-                options,
-            )?,
+        Backend::Exact if layout.ncols() <= EXACT_CLUSTER_LIMIT && !options.decompose => (
+            clusters_in::<Rat>(system, layout, &witness, EchelonOptions::default(), options)?,
             "rational",
         ),
         Backend::Exact | Backend::ModP => (
@@ -421,8 +411,9 @@ pub fn analyze_at(
 }
 
 /// Systems with at most this many unknowns get their clusters decided over ℚ by the exact
-/// backend; larger ones modulo the 61-bit prime (the rank stays proven either way).
-const EXACT_CLUSTER_LIMIT: usize = 0;
+/// backend; larger ones (and W-decompositions, which compute clusters many times) modulo the
+/// 61-bit prime — exact with overwhelming probability; the rank stays proven either way.
+const EXACT_CLUSTER_LIMIT: usize = 400;
 
 /// Clusters, and the decomposition when asked for.
 type ClusterResult = (Vec<Cluster>, Option<(Vec<DecompositionNode>, Statistics)>);
