@@ -1,8 +1,10 @@
 //! Criterion benchmarks of the structural methods (gcs-rigidity) on generated families of
-//! growing size: Dense and Over-Rigid (rule DOR) on random Laman frameworks (2D) and
-//! triangulated spheres (3D), the Dulmage–Mendelsohn decomposition on CAD rectangles and
-//! Laman frameworks, and Dense with a fresh maximum flow per `Distribute` call (the flow paper's
-//! accounting) to show what the incremental flow saves.
+//! growing size: Dense and Over-Rigid (rule DOR, and exact DOR at a witness) on random Laman
+//! frameworks (2D) and triangulated spheres (3D), the Dulmage–Mendelsohn decomposition on CAD
+//! rectangles and Laman frameworks, and Dense with a fresh maximum flow per `Distribute` call
+//! (the flow paper's accounting) to show what the incremental flow saves; the cost of one fresh
+//! network and maximum flow (`network_build`) prices what every other call would cost without
+//! the incremental flow.
 //!
 //! Run: `cargo bench --bench structural` (add `-- --quick` for a short run).
 
@@ -12,7 +14,9 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use gcs_model::System;
 use gcs_model::generate::{laman, rectangles, triangulated_sphere};
-use gcs_rigidity::{Network, RuleDor, dense_analysis, dm_decomposition, over_rigid_analysis};
+use gcs_rigidity::{
+    Network, RuleDor, WitnessDor, dense_analysis, dm_decomposition, over_rigid_analysis,
+};
 
 const SIZES: [usize; 4] = [50, 100, 200, 400];
 const SEED: u64 = 2024;
@@ -83,6 +87,42 @@ fn bench_over_rigid(c: &mut Criterion) {
     group.finish();
 }
 
+/// Over-Rigid with the exact DOR at a witness (the oracle is built once, outside the loop;
+/// `witness_dor_build` measures building it: the witness search and the generators).
+fn bench_over_rigid_witness(c: &mut Criterion) {
+    let families = families();
+    let oracles: Vec<WitnessDor> = families
+        .iter()
+        .map(|(_, _, s)| WitnessDor::find(s, 1).expect("the generated families have a witness"))
+        .collect();
+    let mut group = configure(c, "over_rigid_witness");
+    for ((family, n, system), oracle) in families.iter().zip(&oracles) {
+        group.bench_with_input(BenchmarkId::new(*family, n), system, |b, s| {
+            b.iter(|| black_box(over_rigid_analysis(s, oracle)))
+        });
+    }
+    group.finish();
+    let mut group = configure(c, "witness_dor_build");
+    for (family, n, system) in &families {
+        group.bench_with_input(BenchmarkId::new(*family, n), system, |b, s| {
+            b.iter(|| black_box(WitnessDor::find(s, 1)))
+        });
+    }
+    group.finish();
+}
+
+/// One object–constraint network with its maximum flow from scratch: what each `Distribute`
+/// call would cost without the incremental flow.
+fn bench_network_build(c: &mut Criterion) {
+    let mut group = configure(c, "network_build");
+    for (family, n, system) in families() {
+        group.bench_with_input(BenchmarkId::new(family, n), &system, |b, s| {
+            b.iter(|| black_box(Network::new(s)))
+        });
+    }
+    group.finish();
+}
+
 fn bench_dm(c: &mut Criterion) {
     let mut group = configure(c, "dulmage_mendelsohn");
     for n in SIZES {
@@ -108,6 +148,8 @@ fn main() {
     bench_dense(&mut c);
     bench_dense_fresh_flow(&mut c);
     bench_over_rigid(&mut c);
+    bench_over_rigid_witness(&mut c);
+    bench_network_build(&mut c);
     bench_dm(&mut c);
     c.final_summary();
 }

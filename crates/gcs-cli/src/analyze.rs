@@ -10,12 +10,15 @@ use serde::Serialize;
 
 use crate::Format;
 use crate::batch::{self, Input, Out};
+use crate::structural::{self, Structural, StructuralJson};
 
 /// Options of the analysis, from the command line.
 pub(crate) struct Settings {
     pub(crate) backend: Backend,
     pub(crate) seed: u64,
     pub(crate) format: Format,
+    /// Add the structural section (`--structural`).
+    pub(crate) structural: bool,
 }
 
 #[derive(Serialize)]
@@ -53,9 +56,11 @@ struct ReportJson<'a> {
     internal_equations: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     float_qr_rank: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    structural: Option<StructuralJson>,
 }
 
-fn json(system: &System, file: &str, a: &Analysis) -> String {
+fn json(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> String {
     let id = |c: gcs_model::ConstraintIdx| system.constraint(c).id.clone();
     let report = ReportJson {
         schema: 1,
@@ -92,6 +97,7 @@ fn json(system: &System, file: &str, a: &Analysis) -> String {
         proof: a.proof.as_ref().map(|p| p.name().to_owned()),
         internal_equations: a.internal_equations,
         float_qr_rank: a.float_qr_rank,
+        structural: s.map(|s| structural::json(system, s)),
     };
     serde_json::to_string(&report).unwrap_or_default()
 }
@@ -102,7 +108,7 @@ fn describe_constraint(system: &System, c: gcs_model::ConstraintIdx) -> String {
     format!("{} ({} {})", con.id, con.kind, args.join("–"))
 }
 
-fn text(system: &System, file: &str, a: &Analysis) -> String {
+fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> String {
     let mut out = String::new();
     let push = |out: &mut String, s: String| {
         out.push_str(&s);
@@ -189,6 +195,9 @@ fn text(system: &System, file: &str, a: &Analysis) -> String {
     if let Some(why) = &a.witness.sketch_rejected {
         push(&mut out, format!("  note: sketch not used as witness: {why}"));
     }
+    if let Some(s) = s {
+        push(&mut out, structural::text(system, a, s));
+    }
     out.pop();
     out
 }
@@ -219,15 +228,22 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
                         System::from_ron_str(&text, Some(&file)).map_err(|e| e.to_string())?;
                     let analysis =
                         analyze(&system, &options).map_err(|e| format!("{file}: {e}"))?;
-                    Ok((system, analysis))
+                    let structural = if settings.structural {
+                        let s = Structural::new(&system, &analysis)
+                            .map_err(|e| format!("{file}: structural: {e}"))?;
+                        Some(s)
+                    } else {
+                        None
+                    };
+                    Ok((system, analysis, structural))
                 });
                 (file, result)
             }
         };
         match result {
-            Ok((system, analysis)) => match settings.format {
-                Format::Json => out.line(&json(&system, &file, &analysis)),
-                Format::Text => out.line(&text(&system, &file, &analysis)),
+            Ok((system, analysis, s)) => match settings.format {
+                Format::Json => out.line(&json(&system, &file, &analysis, s.as_ref())),
+                Format::Text => out.line(&text(&system, &file, &analysis, s.as_ref())),
             },
             Err(message) => {
                 failed += 1;

@@ -9,6 +9,7 @@
 mod analyze;
 mod batch;
 mod check;
+mod structural;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -54,6 +55,11 @@ enum Command {
         /// Output format: human-readable text, or JSON Lines (one object per model).
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// Also run the structural (degree-of-freedom counting) methods: Dense, Over-Rigid with
+        /// the DOR from rules and from the witness, and the Dulmage–Mendelsohn decomposition;
+        /// the text report says where they disagree with the witness analysis, and why.
+        #[arg(long)]
+        structural: bool,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -124,7 +130,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
-        Command::Analyze { backend, seed, tolerance, format, paths } => {
+        Command::Analyze { backend, seed, tolerance, format, structural, paths } => {
             if !(tolerance.is_finite() && tolerance >= 0.0) {
                 eprintln!("error: --tolerance must be a finite number ≥ 0");
                 return ExitCode::from(2);
@@ -142,7 +148,7 @@ fn main() -> ExitCode {
                 );
                 return ExitCode::from(2);
             }
-            analyze::run(&paths, &analyze::Settings { backend, seed, format })
+            analyze::run(&paths, &analyze::Settings { backend, seed, format, structural })
         }
         Command::Generate { family, size, seed } => {
             let system = match family {

@@ -11,8 +11,8 @@
 //!
 //! It depends on geometric properties of the solution (two lines in 2D: 3, but 2 if they are
 //! parallel). [`DorOracle`] abstracts where those properties come from; [`RuleDor`] reads them
-//! from explicit constraints with a rule table, a witness-based oracle (exact rank of the
-//! trivial motions restricted to `X` at a witness) can be plugged in instead.
+//! from explicit constraints with a rule table, [`WitnessDor`](crate::WitnessDor) (exact rank of
+//! the trivial motions restricted to `X` at a witness) can be plugged in instead.
 //!
 //! # The rule table of [`RuleDor`]
 //!
@@ -96,8 +96,8 @@
 //!   record orthogonal directions.
 //!
 //! `Angle` constraints are not read (their value is a dimension, not a property), nor are
-//! consequences that need theorem proving (Pappus, Desargues…): that is what a witness-based
-//! oracle is for.
+//! consequences that need theorem proving (Pappus, Desargues…): that is what
+//! [`WitnessDor`](crate::WitnessDor) is for.
 
 use std::collections::{HashMap, HashSet};
 

@@ -25,4 +25,8 @@ pub enum RigidityError {
     /// An overload was to be applied to an empty set of objects.
     #[error("an overload needs at least one object to be attached to")]
     EmptyAttachment,
+    /// A witness-based DOR could not be set up: no witness, a layout of another system, or
+    /// coordinates that do not fit the layout. The message says which.
+    #[error("witness DOR: {0}")]
+    Witness(String),
 }

@@ -13,6 +13,7 @@
 //! | Jermann et al.'s `Distribute` (virtual constraint `R` on a set) | [`Network::distribute`] | §4.2 |
 //! | Dense, Minimal_Dense (s_rigidity, Def. 3) | [`dense`], [`minimal_dense`], [`dense_analysis`] | §4.3; survey §4.1 |
 //! | degree of rigidity, rule table | [`DorOracle`], [`RuleDor`] | §2.4 (Def. 4), §4.3 (Def. 6); survey Def. 6 |
+//! | degree of rigidity, exact at a witness | [`WitnessDor`] | §2.4 ("equivalent to geometric theorem proving"); DESIGN.md "Trivial motions" |
 //! | Over-Rigid over DOR-minimal sets (es_rigidity, Def. 4) | [`over_rigid`], [`minimal_over_rigid`], [`over_rigid_analysis`] | §4.3 |
 //! | Dulmage–Mendelsohn (Hopcroft–Karp, coarse and fine) | [`dm_decomposition`], [`dm`] | survey §4.2.1 "D-M" |
 //! | all of it for a report (FORMAT.md §3) | [`structural_analysis`] | |
@@ -62,6 +63,9 @@
 //! - **Objects.** Entities with DOF > 0; a segment is its two points.
 //! - **DOR** comes from a [`DorOracle`]; [`RuleDor`] derives its table from the stabiliser
 //!   definition and disagrees, on purpose, with two values quoted by the survey (see [`dor`]).
+//!   [`WitnessDor`] computes it exactly at a witness, as the rank of the displacement
+//!   generators restricted to the set's unknowns; it is the only use this crate makes of
+//!   `gcs-jacobian` (see [`witness_dor`]).
 
 pub mod dm;
 pub mod dor;
@@ -70,6 +74,7 @@ pub mod flow;
 pub mod network;
 mod report;
 pub mod rigidity;
+pub mod witness_dor;
 
 pub use dm::{DmDecomposition, DmPart, dm_decomposition};
 pub use dor::{DorOracle, RuleDor};
@@ -81,3 +86,4 @@ pub use rigidity::{
     minimal_over_rigid, object_dor, over_rigid, over_rigid_analysis, over_rigid_analysis_in,
     over_rigid_in,
 };
+pub use witness_dor::WitnessDor;
