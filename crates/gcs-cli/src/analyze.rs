@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::Format;
 use crate::batch::{self, Input, Out};
+use crate::decompose;
 use crate::structural::{self, Structural, StructuralJson};
 
 /// Options of the analysis, from the command line.
@@ -19,6 +20,10 @@ pub(crate) struct Settings {
     pub(crate) format: Format,
     /// Add the structural section (`--structural`).
     pub(crate) structural: bool,
+    /// Add the W-decomposition (`--decompose`).
+    pub(crate) decompose: bool,
+    /// Write the W-decompositions as Graphviz DOT to this file (`--dot`).
+    pub(crate) dot: Option<PathBuf>,
 }
 
 #[derive(Serialize)]
@@ -48,6 +53,11 @@ struct ReportJson<'a> {
     rigid: bool,
     well_constrained: bool,
     redundant: Vec<RedundantJson>,
+    clusters: Vec<decompose::ClusterJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    decomposition: Option<Vec<decompose::NodeJson>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    decomposition_complete: Option<bool>,
     seed: u64,
     #[serde(skip_serializing_if = "Option::is_none")]
     tolerance: Option<f64>,
@@ -58,6 +68,7 @@ struct ReportJson<'a> {
     float_qr_rank: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     structural: Option<StructuralJson>,
+    clusters_arithmetic: &'static str,
 }
 
 fn json(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> String {
@@ -98,6 +109,13 @@ fn json(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> St
         internal_equations: a.internal_equations,
         float_qr_rank: a.float_qr_rank,
         structural: s.map(|s| structural::json(system, s)),
+        clusters: decompose::clusters_json(system, &a.clusters),
+        decomposition: a
+            .decomposition
+            .as_ref()
+            .map(|trees| trees.iter().map(|t| decompose::tree_json(system, t)).collect()),
+        decomposition_complete: a.decomposition_statistics.map(|s| s.complete),
+        clusters_arithmetic: a.clusters_arithmetic,
     };
     serde_json::to_string(&report).unwrap_or_default()
 }
@@ -195,6 +213,31 @@ fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> St
     if let Some(why) = &a.witness.sketch_rejected {
         push(&mut out, format!("  note: sketch not used as witness: {why}"));
     }
+    // What is rigid, and so what still moves: the clusters.
+    if !(a.rigid() && a.clusters.len() == 1) {
+        for line in decompose::clusters_text(system, &a.clusters) {
+            push(&mut out, line);
+        }
+    } else {
+        push(&mut out, "  rigid: the whole system is one rigid body".to_owned());
+    }
+    if let Some(trees) = &a.decomposition {
+        let complete = a.decomposition_statistics.is_none_or(|s| s.complete);
+        push(
+            &mut out,
+            format!(
+                "  W-decomposition (a DR-plan: rigid subsystems by containment){}:",
+                if complete { "" } else { " — incomplete, the work budget ran out" }
+            ),
+        );
+        let mut lines = Vec::new();
+        for t in trees.iter().filter(|t| t.entities.len() > 1) {
+            decompose::tree_text(system, t, &mut lines);
+        }
+        for line in lines {
+            push(&mut out, line);
+        }
+    }
     if let Some(s) = s {
         push(&mut out, structural::text(system, a, s));
     }
@@ -212,8 +255,10 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     let options = AnalysisOptions {
         backend: settings.backend,
         witness: WitnessOptions { seed: settings.seed, ..WitnessOptions::default() },
+        decompose: settings.decompose,
         ..AnalysisOptions::default()
     };
+    let mut dot = String::new();
     for input in batch::expand(paths) {
         let (file, result) = match input {
             Input::Missing(p, why) => {
@@ -241,10 +286,17 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
             }
         };
         match result {
-            Ok((system, analysis, s)) => match settings.format {
-                Format::Json => out.line(&json(&system, &file, &analysis, s.as_ref())),
-                Format::Text => out.line(&text(&system, &file, &analysis, s.as_ref())),
-            },
+            Ok((system, analysis, s)) => {
+                if settings.dot.is_some()
+                    && let Some(trees) = &analysis.decomposition
+                {
+                    dot.push_str(&decompose::dot(&system, trees));
+                }
+                match settings.format {
+                    Format::Json => out.line(&json(&system, &file, &analysis, s.as_ref())),
+                    Format::Text => out.line(&text(&system, &file, &analysis, s.as_ref())),
+                }
+            }
             Err(message) => {
                 failed += 1;
                 match settings.format {
@@ -258,5 +310,11 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
         }
     }
     out.flush();
+    if let Some(path) = &settings.dot
+        && let Err(e) = std::fs::write(path, dot)
+    {
+        eprintln!("error: cannot write {}: {e}", batch::display(path));
+        failed += 1;
+    }
     batch::status(failed)
 }

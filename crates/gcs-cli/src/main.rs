@@ -9,6 +9,7 @@
 mod analyze;
 mod batch;
 mod check;
+mod decompose;
 mod structural;
 
 use std::path::PathBuf;
@@ -60,6 +61,15 @@ enum Command {
         /// the text report says where they disagree with the witness analysis, and why.
         #[arg(long)]
         structural: bool,
+        /// Also W-decompose every rigid cluster into smaller rigid subsystems (witness paper
+        /// §5): a tree of rigid subsystems (a DR-plan) whose leaves are W-indecomposable.
+        #[arg(long)]
+        decompose: bool,
+        /// Write the W-decompositions as a Graphviz DOT graph to FILE (implies --decompose):
+        /// one node per rigid subsystem, labelled with its entity ids, an edge to each
+        /// subsystem it decomposes into. Render with `dot -Tsvg FILE`.
+        #[arg(long, value_name = "FILE")]
+        dot: Option<PathBuf>,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -130,7 +140,16 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
-        Command::Analyze { backend, seed, tolerance, format, structural, paths } => {
+        Command::Analyze {
+            backend,
+            seed,
+            tolerance,
+            format,
+            structural,
+            decompose,
+            dot,
+            paths,
+        } => {
             if !(tolerance.is_finite() && tolerance >= 0.0) {
                 eprintln!("error: --tolerance must be a finite number ≥ 0");
                 return ExitCode::from(2);
@@ -148,7 +167,11 @@ fn main() -> ExitCode {
                 );
                 return ExitCode::from(2);
             }
-            analyze::run(&paths, &analyze::Settings { backend, seed, format, structural })
+            let decompose = decompose || dot.is_some();
+            analyze::run(
+                &paths,
+                &analyze::Settings { backend, seed, format, structural, decompose, dot },
+            )
         }
         Command::Generate { family, size, seed } => {
             let system = match family {

@@ -1,0 +1,190 @@
+//! Rendering clusters and W-decompositions: JSON (format §2–§3), text trees, Graphviz DOT.
+
+use gcs_decompose::{Cluster, DecompositionNode};
+use gcs_model::{ConstraintIdx, EntityIdx, System};
+use serde::Serialize;
+
+/// A cluster in the JSON report.
+#[derive(Serialize)]
+pub(crate) struct ClusterJson {
+    entities: Vec<String>,
+    constraints: Vec<String>,
+}
+
+/// A node of the decomposition in the JSON report.
+#[derive(Serialize)]
+pub(crate) struct NodeJson {
+    entities: Vec<String>,
+    constraints: Vec<String>,
+    children: Vec<NodeJson>,
+}
+
+fn entity_ids(system: &System, es: &[EntityIdx]) -> Vec<String> {
+    es.iter().map(|e| system.entity(*e).id.clone()).collect()
+}
+
+fn constraint_ids(system: &System, cs: &[ConstraintIdx]) -> Vec<String> {
+    cs.iter().map(|c| system.constraint(*c).id.clone()).collect()
+}
+
+pub(crate) fn clusters_json(system: &System, clusters: &[Cluster]) -> Vec<ClusterJson> {
+    clusters
+        .iter()
+        .map(|c| ClusterJson {
+            entities: entity_ids(system, &c.entities),
+            constraints: constraint_ids(system, &c.constraints),
+        })
+        .collect()
+}
+
+pub(crate) fn tree_json(system: &System, node: &DecompositionNode) -> NodeJson {
+    NodeJson {
+        entities: entity_ids(system, &node.entities),
+        constraints: constraint_ids(system, &node.constraints),
+        children: node.children.iter().map(|c| tree_json(system, c)).collect(),
+    }
+}
+
+/// Entity ids of a set, segments left out when their points are in it (they add nothing to
+/// read), abbreviated when long.
+fn short(system: &System, es: &[EntityIdx]) -> String {
+    let ids: Vec<&str> = es
+        .iter()
+        .filter(|e| match system.segment_points(**e) {
+            Some((a, b)) => !(es.contains(&a) && es.contains(&b)),
+            None => true,
+        })
+        .map(|e| system.entity(*e).id.as_str())
+        .collect();
+    const MAX: usize = 12;
+    if ids.len() <= MAX {
+        ids.join(", ")
+    } else {
+        format!("{}, … ({} entities)", ids[..MAX].join(", "), ids.len())
+    }
+}
+
+/// The clusters as text lines.
+pub(crate) fn clusters_text(system: &System, clusters: &[Cluster]) -> Vec<String> {
+    let mut out = Vec::new();
+    let shared = |e: &EntityIdx| clusters.iter().filter(|c| c.entities.contains(e)).count() > 1;
+    // Entities rigid with nothing else are listed together, at the end.
+    let alone: Vec<&str> = clusters
+        .iter()
+        .filter(|c| c.entities.len() == 1)
+        .map(|c| system.entity(c.entities[0]).id.as_str())
+        .collect();
+    for c in clusters.iter().filter(|c| c.entities.len() > 1) {
+        let hinges: Vec<&str> = c
+            .entities
+            .iter()
+            .filter(|e| shared(e) && system.segment_points(**e).is_none())
+            .map(|e| system.entity(*e).id.as_str())
+            .collect();
+        let mut line = format!(
+            "  rigid: {{{}}} ({} constraint{}",
+            short(system, &c.entities),
+            c.constraints.len(),
+            if c.constraints.len() == 1 { "" } else { "s" }
+        );
+        if c.grounded {
+            line.push_str(", held in place");
+        }
+        if !hinges.is_empty() {
+            line.push_str(&format!(", hinged at {}", hinges.join(", ")));
+        }
+        line.push(')');
+        out.push(line);
+    }
+    if !alone.is_empty() {
+        const MAX: usize = 16;
+        let list = if alone.len() <= MAX {
+            alone.join(", ")
+        } else {
+            format!("{}, … ({} in all)", alone[..MAX].join(", "), alone.len())
+        };
+        out.push(format!("  rigidly attached to nothing: {list}"));
+    }
+    out
+}
+
+/// A decomposition tree as indented text lines.
+pub(crate) fn tree_text(system: &System, node: &DecompositionNode, out: &mut Vec<String>) {
+    fn walk(
+        system: &System,
+        node: &DecompositionNode,
+        prefix: &str,
+        last: bool,
+        root: bool,
+        out: &mut Vec<String>,
+    ) {
+        let label = format!(
+            "{{{}}} {} constraint{}{}",
+            short(system, &node.entities),
+            node.constraints.len(),
+            if node.constraints.len() == 1 { "" } else { "s" },
+            if node.children.is_empty() { ", W-indecomposable" } else { "" }
+        );
+        if root {
+            out.push(format!("    {label}"));
+        } else {
+            out.push(format!("    {prefix}{}{label}", if last { "└─ " } else { "├─ " }));
+        }
+        let child_prefix = if root {
+            String::new()
+        } else {
+            format!("{prefix}{}", if last { "   " } else { "│  " })
+        };
+        for (i, c) in node.children.iter().enumerate() {
+            walk(system, c, &child_prefix, i + 1 == node.children.len(), false, out);
+        }
+    }
+    walk(system, node, "", true, true, out);
+}
+
+fn dot_escape(s: &str) -> String {
+    s.replace('\\', "\\\\").replace('"', "\\\"")
+}
+
+/// The W-decomposition as a Graphviz digraph: one node per rigid subsystem, labelled with its
+/// entity ids, and an edge from each subsystem to the subsystems it decomposes into.
+pub(crate) fn dot(system: &System, trees: &[DecompositionNode]) -> String {
+    fn walk(
+        system: &System,
+        node: &DecompositionNode,
+        next: &mut usize,
+        out: &mut String,
+    ) -> usize {
+        let id = *next;
+        *next += 1;
+        let ids: Vec<&str> = node
+            .entities
+            .iter()
+            .filter(|e| system.segment_points(**e).is_none())
+            .map(|e| system.entity(*e).id.as_str())
+            .collect();
+        // Wrap the label every eight ids.
+        let label = ids.chunks(8).map(|c| c.join(" ")).collect::<Vec<_>>().join("\\n");
+        let shape = if node.children.is_empty() { "box" } else { "box, style=bold" };
+        out.push_str(&format!(
+            "  n{id} [label=\"{}\\n({} constraints)\", shape={shape}];\n",
+            dot_escape(&label).replace("\\\\n", "\\n"),
+            node.constraints.len()
+        ));
+        for c in &node.children {
+            let child = walk(system, c, next, out);
+            out.push_str(&format!("  n{id} -> n{child};\n"));
+        }
+        id
+    }
+    let mut out = format!(
+        "digraph \"{}\" {{\n  rankdir=TB;\n  node [fontname=\"Helvetica\"];\n",
+        dot_escape(system.name())
+    );
+    let mut next = 0;
+    for t in trees {
+        walk(system, t, &mut next, &mut out);
+    }
+    out.push_str("}\n");
+    out
+}
