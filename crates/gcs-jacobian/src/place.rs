@@ -385,7 +385,7 @@ impl Placer<'_> {
             let unit = |i: usize, j: usize, sj: i64| -> (Vec<Q>, Q) {
                 let mut g = vec![Q::ZERO; 6];
                 g[i] = Q::ONE;
-                g[j] = Q::from(sj as i64);
+                g[j] = Q::from(sj);
                 (g, Q::ZERO)
             };
             let plus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, 1)).collect() };
@@ -664,7 +664,7 @@ impl Placer<'_> {
         let coef = |map: &AffineMap| {
             let a: Vec<Q> = map.rows.iter().map(|(g, _)| qla::dot(g, &w)).collect();
             let b: Vec<Q> = map.rows.iter().map(|(g, c)| qla::dot(g, &x0) + c).collect();
-            (qla::dot(&a, &a), qla::dot(&a, &b) * Q::from(2 as i64), qla::dot(&b, &b))
+            (qla::dot(&a, &a), qla::dot(&a, &b) * Q::from(2_i64), qla::dot(&b, &b))
         };
         let (pa, pb, pc) = coef(p);
         let (ma, mb, mc) = coef(m);
@@ -680,9 +680,9 @@ impl Placer<'_> {
             }
             vec![-c / b]
         } else {
-            let disc = &b * &b - Q::from(4 as i64) * &a * &c;
+            let disc = &b * &b - Q::from(4_i64) * &a * &c;
             let s = qla::sqrt(&disc)?;
-            let two_a = &a * Q::from(2 as i64);
+            let two_a = &a * Q::from(2_i64);
             vec![(-&b + &s) / &two_a, (-&b - &s) / &two_a]
         };
         let t = roots.into_iter().min_by_key(|t| {
@@ -784,7 +784,7 @@ fn rational_unit(w: &[f64], den: i64) -> Option<Vec<Q>> {
     }
     let w: Vec<f64> = w.iter().map(|x| x / norm).collect();
     let one = Q::ONE;
-    let two = Q::from(2 as i64);
+    let two = Q::from(2_i64);
     if w.len() == 2 {
         // (cos θ, sin θ) = ((1 − t²), 2t)/(1 + t²), t = tan(θ/2); near θ = π use −t⁻¹ form.
         let flip = w[0] < 0.0;
@@ -942,7 +942,7 @@ impl AffineMap {
         for (sign, map) in [(Q::ONE, self), (-Q::ONE, other)] {
             for (gi, ci) in &map.rows {
                 for (a, b) in g.iter_mut().zip(gi) {
-                    *a += &sign * b * ci * Q::from(2 as i64);
+                    *a += &sign * b * ci * Q::from(2_i64);
                 }
                 c += &sign * ci * ci;
             }

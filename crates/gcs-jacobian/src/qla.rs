@@ -149,7 +149,7 @@ mod tests {
     use super::*;
 
     fn q(n: i64) -> Q {
-        Q::from(n as i64)
+        Q::from(n)
     }
 
     #[test]
