@@ -329,7 +329,16 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             nodes.extend(self.expand(child, &replacements, sub));
         }
         nodes.extend(subtrees);
-        root.children = nest(nodes);
+        // A node as large as `sub` is `sub` itself: keep its children only.
+        let mut flat: Vec<Node> = Vec::new();
+        for n in nodes {
+            if n.entities.len() >= sub.entities.len() {
+                flat.extend(n.children);
+            } else {
+                flat.push(n);
+            }
+        }
+        root.children = nest(flat);
         Some(root)
     }
 
@@ -465,12 +474,37 @@ fn on_boundary<F>(sub: &Subsystem<F>, removed: &Group<F>, m: &RawCluster, e: Ent
         .any(|(g, group)| !m.groups.contains(&g) && group.entities.contains(&e))
 }
 
-/// Arranges nodes into a forest by containment of their entity sets.
-fn nest(mut nodes: Vec<Node>) -> Vec<Node> {
-    // Largest first, so each node can be placed under the smallest container already placed.
-    nodes.sort_by_key(|n| std::cmp::Reverse(n.entities.len()));
-    let mut roots: Vec<Node> = Vec::new();
+/// Arranges nodes into a forest by containment of their entity sets; nodes with the same
+/// entities are merged.
+fn nest(nodes: Vec<Node>) -> Vec<Node> {
+    // Flatten, merge equal entity sets, then insert largest first, so that each node goes
+    // under the smallest container already placed.
+    let mut all: Vec<Node> = Vec::new();
+    fn flatten(n: Node, out: &mut Vec<Node>) {
+        let Node { entities, labels, children } = n;
+        out.push(Node { entities, labels, children: Vec::new() });
+        for c in children {
+            flatten(c, out);
+        }
+    }
     for n in nodes {
+        flatten(n, &mut all);
+    }
+    let mut merged: Vec<Node> = Vec::new();
+    for n in all {
+        if let Some(m) = merged.iter_mut().find(|m| m.entities == n.entities) {
+            for l in n.labels {
+                if !m.labels.contains(&l) {
+                    m.labels.push(l);
+                }
+            }
+        } else {
+            merged.push(n);
+        }
+    }
+    merged.sort_by_key(|n| std::cmp::Reverse(n.entities.len()));
+    let mut roots: Vec<Node> = Vec::new();
+    for n in merged {
         insert(&mut roots, n);
     }
     roots

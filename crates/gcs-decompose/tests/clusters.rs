@@ -331,3 +331,48 @@ proptest! {
         prop_assert_eq!(ours, rigid_components(n, &edges));
     }
 }
+
+fn check_tree(s: &System, node: &DecompositionNode, path: &str) {
+    // Every node is rigid when cut out with its constraints.
+    if node.entities.len() > 1 {
+        let cut = cut_out(s, &node.entities, &node.constraints);
+        let a = run(&cut, false);
+        assert_eq!(a.dof, 0, "{path}: node {:?} is not rigid alone", node.entities);
+    }
+    for c in &node.children {
+        assert!(
+            c.entities.iter().all(|e| node.entities.contains(e)),
+            "{path}: a child is not contained in its parent"
+        );
+        assert!(c.constraints.iter().all(|k| node.constraints.contains(k)), "{path}: child constraints");
+        assert!(c.entities.len() < node.entities.len(), "{path}: a child is smaller");
+        check_tree(s, c, path);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// On random rigid 2D bar frameworks, every node of the W-decomposition is a rigid
+    /// subsystem contained in its parent, and every leaf is W-indecomposable as a system of
+    /// its own (decomposing it again gives no child).
+    #[test]
+    fn decomposition_nodes_are_rigid_subsystems(seed in 0u64..10_000, n in 4usize..=10) {
+        let s = gcs_model::generate::laman(n, seed);
+        let a = run(&s, true);
+        let trees = a.decomposition.as_ref().unwrap();
+        prop_assert_eq!(trees.len(), 1);
+        check_tree(&s, &trees[0], &format!("laman({n}, {seed})"));
+        fn leaves<'t>(n: &'t DecompositionNode, out: &mut Vec<&'t DecompositionNode>) {
+            if n.children.is_empty() { out.push(n) } else { for c in &n.children { leaves(c, out) } }
+        }
+        let mut ls = Vec::new();
+        leaves(&trees[0], &mut ls);
+        for leaf in ls {
+            let cut = cut_out(&s, &leaf.entities, &leaf.constraints);
+            let again = run(&cut, true);
+            let t = &again.decomposition.as_ref().unwrap()[0];
+            prop_assert!(t.children.is_empty(), "a leaf decomposes further: {:?}", leaf.entities);
+        }
+    }
+}
