@@ -2,7 +2,8 @@
 //! redundant constraints in file order with their spanning groups.
 
 use gcs_jacobian::{
-    Jacobian, JacobianError, Layout, RowOwner, Witness, WitnessOptions, find_witness, motions,
+    Jacobian, JacobianError, Layout, RowOwner, Witness, WitnessOptions, WitnessSource,
+    find_witness, motions,
 };
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{
@@ -178,6 +179,12 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
     }
     let layout = Layout::new(system);
     let witness = find_witness(system, &layout, &options.witness)?;
+    if witness.source == WitnessSource::Approximate
+        && !matches!(options.backend, Backend::Float { .. })
+    {
+        let why = witness.sketch_rejected.clone().unwrap_or_default();
+        return Err(AnalysisError::ApproximateWitness(why));
+    }
     analyze_at(system, &layout, witness, options)
 }
 
@@ -191,7 +198,13 @@ struct Outcome {
     float_qr_rank: Option<usize>,
 }
 
-fn supports<F>(analysis: &RowAnalysis<F>) -> Vec<Option<Vec<usize>>> {
+/// The support of each dependent row's combination. With a tolerance (float backend), the
+/// coefficients below `√tolerance` times the largest are rounding noise, not part of the
+/// circuit, and are dropped.
+fn supports<F: Field>(
+    analysis: &RowAnalysis<F>,
+    tolerance: Option<f64>,
+) -> Vec<Option<Vec<usize>>> {
     analysis
         .outcomes
         .iter()
@@ -200,7 +213,11 @@ fn supports<F>(analysis: &RowAnalysis<F>) -> Vec<Option<Vec<usize>>> {
             Insertion::Dependent { combination } => Some(
                 combination
                     .as_ref()
-                    .map(|c| c.iter().map(|(i, _)| *i).collect())
+                    .map(|c| {
+                        let max = c.iter().map(|(_, v)| v.magnitude()).fold(0.0, f64::max);
+                        let floor = tolerance.map_or(0.0, |t| t.sqrt() * max);
+                        c.iter().filter(|(_, v)| v.magnitude() > floor).map(|(i, _)| *i).collect()
+                    })
                     .unwrap_or_default(),
             ),
         })
@@ -254,6 +271,7 @@ fn generic<F: Field>(
     let jacobian: Jacobian<F> = witness.jacobian(system, layout)?;
     let generators = motions::generators::<F>(system, layout, &witness.coords_in()?)?;
     let trivial = trivial_motions(&jacobian, &generators, options.clone());
+    let options_tolerance = options.tolerance;
     let n = jacobian.rows.len();
     let internal = jacobian.internal_count();
     // Tracking combinations costs far more than the elimination (they fill in): run untracked
@@ -266,7 +284,7 @@ fn generic<F: Field>(
     Ok((
         Outcome {
             rank: analysis.rank,
-            dependent: supports(&analysis),
+            dependent: supports(&analysis, options_tolerance),
             trivial,
             proof: None,
             float_qr_rank: None,
@@ -304,7 +322,7 @@ pub fn analyze_at(
             (
                 Outcome {
                     rank: analysis.rank,
-                    dependent: supports(&analysis),
+                    dependent: supports(&analysis, None),
                     trivial,
                     proof: Some(proof),
                     float_qr_rank: None,

@@ -14,6 +14,12 @@ pub enum AnalysisError {
     /// A failure of the arithmetic.
     #[error("arithmetic: {0}")]
     Rank(#[from] RankError),
+    /// Only an approximate witness exists (a numerical projection), and the backend is exact:
+    /// deciding an exact rank at an approximate point would be a silent wrong answer.
+    #[error(
+        "no exact witness ({0}); a numerical projection of the sketch found an approximate one: rerun with --backend float to analyse there"
+    )]
+    ApproximateWitness(String),
     /// The backend was not compiled in.
     #[error("backend {0} is not available in this build (rebuild with --features {0})")]
     BackendUnavailable(&'static str),

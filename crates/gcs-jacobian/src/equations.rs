@@ -410,13 +410,18 @@ pub(crate) fn internal_rows<F: Field>(repr: Repr, x: &[Dual<F>]) -> Vec<Dual<F>>
 
 /// Whether the 2D lines, planes, or 3D lines of a two-entity shape are parallel at the
 /// witness — the condition under which the parallel-offset distance is defined.
-pub(crate) fn parallel_at<F: Field>(system: &System, shape: Shape, l: &Local<'_, F>) -> bool {
-    let zero = |xs: &[Dual<F>]| xs.iter().all(|x| x.value.is_zero());
+pub(crate) fn parallel_at<F: Field>(
+    system: &System,
+    shape: Shape,
+    l: &Local<'_, F>,
+    is_zero: &dyn Fn(&F) -> bool,
+) -> bool {
+    let zero = |xs: &[Dual<F>]| xs.iter().all(|x| is_zero(&x.value));
     match shape {
         Shape::LineLine(p, q) if system.dim() == Dim::Two => {
             let [a1, b1, _] = l.line2(p);
             let [a2, b2, _] = l.line2(q);
-            v::cross2(&[a1, b1], &[a2, b2]).value.is_zero()
+            is_zero(&v::cross2(&[a1, b1], &[a2, b2]).value)
         }
         Shape::LineLine(p, q) => zero(&v::cross3(&l.line3(p).0, &l.line3(q).0)),
         Shape::PlanePlane(p, q) => zero(&v::cross3(&l.plane(p).0, &l.plane(q).0)),

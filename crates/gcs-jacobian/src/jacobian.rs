@@ -115,7 +115,7 @@ pub fn relation_row<F: Field>(
     if kind == ConstraintKind::Distance
         && matches!(shape, Shape::LineLine(..) | Shape::PlanePlane(..))
     {
-        let parallel = equations::parallel_at(system, shape, &local);
+        let parallel = equations::parallel_at(system, shape, &local, &|x: &F| x.is_zero());
         if equations::variants(system, &c) == 2 {
             variant = usize::from(parallel);
         } else if !parallel {

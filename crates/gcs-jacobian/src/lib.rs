@@ -47,6 +47,7 @@ mod layout;
 pub mod motions;
 mod place;
 pub mod plan;
+mod project;
 mod qla;
 pub mod sketch;
 mod witness;

@@ -61,6 +61,19 @@ pub fn plan<F: Field>(
     witness: &[F],
     sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<F>>,
 ) -> Result<Result<Plan, Unsatisfied>, JacobianError> {
+    plan_with(system, layout, witness, sketch, &|x: &F| x.is_zero(), EchelonOptions::default())
+}
+
+/// [`plan`] with a zero test and echelon options of one's own: for an approximate witness,
+/// residuals below a tolerance count as zero and the row selection uses a tolerance.
+pub(crate) fn plan_with<F: Field>(
+    system: &System,
+    layout: &Layout,
+    witness: &[F],
+    sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<F>>,
+    zero: &dyn Fn(&F) -> bool,
+    options: EchelonOptions,
+) -> Result<Result<Plan, Unsatisfied>, JacobianError> {
     let mut out = Vec::with_capacity(system.constraints().len());
     for ci in system.constraint_indices() {
         let c = system.constraint(ci);
@@ -72,7 +85,7 @@ pub fn plan<F: Field>(
         if c.kind == ConstraintKind::Distance
             && matches!(c.shape, Shape::LineLine(..) | Shape::PlanePlane(..))
         {
-            let parallel = equations::parallel_at(system, c.shape, &local);
+            let parallel = equations::parallel_at(system, c.shape, &local, zero);
             if equations::variants(system, c) == 2 {
                 variant = Some(usize::from(parallel));
             } else if !parallel {
@@ -87,7 +100,7 @@ pub fn plan<F: Field>(
                 let mut found = None;
                 for v in 0..equations::variants(system, c) {
                     let cand = equations::candidates(system, c, v, &local, sketch);
-                    if !cand.exact || cand.rows.iter().all(|r| r.value.is_zero()) {
+                    if !cand.exact || cand.rows.iter().all(|r| zero(&r.value)) {
                         found = Some(v);
                         break;
                     }
@@ -99,7 +112,7 @@ pub fn plan<F: Field>(
             }
         };
         let cand = equations::candidates(system, c, variant, &local, sketch);
-        out.push(select(layout, &base, &local, &cand.rows, c.doc));
+        out.push(select(layout, &base, &local, &cand.rows, c.doc, options.clone()));
         out.last_mut().expect("just pushed").variant = variant;
     }
     Ok(Ok(Plan { constraints: out }))
@@ -114,13 +127,14 @@ fn select<F: Field>(
     local: &Local<'_, F>,
     rows: &[Dual<F>],
     doc: usize,
+    options: EchelonOptions,
 ) -> ConstraintPlan {
     if rows.len() == doc {
         // Nothing to choose: the rows are the constraint's equations.
         return ConstraintPlan { variant: 0, rows: (0..doc).collect(), regular: true };
     }
     let n = local.nvars();
-    let mut ech = Echelon::new(n, EchelonOptions::default());
+    let mut ech = Echelon::new(n, options);
     // Internal rows of the local entities, over local variables.
     for &e in base {
         if let Some(repr) = layout.repr(e) {

@@ -35,6 +35,9 @@ pub enum WitnessSource {
     /// Constructed (the sketch was missing or did not satisfy the parameter-free
     /// constraints).
     Generated,
+    /// No rational witness could be constructed; a numerical projection of the sketch onto
+    /// the constraints, exact only up to rounding. Only the float backend is honest at it.
+    Approximate,
 }
 
 impl WitnessSource {
@@ -44,6 +47,7 @@ impl WitnessSource {
             WitnessSource::Sketch => "sketch",
             WitnessSource::Perturbed => "perturbed",
             WitnessSource::Generated => "generated",
+            WitnessSource::Approximate => "approximate",
         }
     }
 }
@@ -219,7 +223,34 @@ pub fn find_witness(
             if let Some(s) = &sketch_rejected {
                 msg = format!("{s}, and {msg}");
             }
-            Err(JacobianError::NoWitness(msg))
+            // Last resort: project the sketch numerically onto the constraints.
+            let start: Vec<f64> = pref.iter().map(Rat::to_f64).collect();
+            let Some(x) = crate::project::project(system, layout, &start, scale) else {
+                return Err(JacobianError::NoWitness(msg));
+            };
+            let tol = 1e-9 * scale.max(1.0).powi(2);
+            let sketch_f = |e: EntityIdx| crate::sketch::sketch_coords_in::<f64>(system, e);
+            let zero = |v: &f64| v.abs() <= tol;
+            match crate::plan::plan_with(
+                system,
+                layout,
+                &x,
+                &sketch_f,
+                &zero,
+                EchelonOptions::float(1e-9),
+            )? {
+                Ok(plan) => Ok(Witness {
+                    coords: x
+                        .iter()
+                        .map(|v| BigRational::from_float(*v).unwrap_or_default())
+                        .collect(),
+                    source: WitnessSource::Approximate,
+                    plan,
+                    genericity_tested: false,
+                    sketch_rejected: Some(msg),
+                }),
+                Err(_) => Err(JacobianError::NoWitness(msg)),
+            }
         }
     }
 }
