@@ -344,7 +344,10 @@ fn check_tree(s: &System, node: &DecompositionNode, path: &str) {
             c.entities.iter().all(|e| node.entities.contains(e)),
             "{path}: a child is not contained in its parent"
         );
-        assert!(c.constraints.iter().all(|k| node.constraints.contains(k)), "{path}: child constraints");
+        assert!(
+            c.constraints.iter().all(|k| node.constraints.contains(k)),
+            "{path}: child constraints"
+        );
         assert!(c.entities.len() < node.entities.len(), "{path}: a child is smaller");
         check_tree(s, c, path);
     }
