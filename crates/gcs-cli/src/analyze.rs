@@ -9,7 +9,7 @@ use gcs_model::System;
 use serde::Serialize;
 
 use crate::Format;
-use crate::batch::{self, Input, Out};
+use crate::batch::{self, Out};
 use crate::decompose;
 use crate::structural::{self, Structural, StructuralJson};
 
@@ -259,32 +259,18 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
         ..AnalysisOptions::default()
     };
     let mut dot = String::new();
-    for input in batch::expand(paths) {
-        let (file, result) = match input {
-            Input::Missing(p, why) => {
-                let file = batch::display(&p);
-                let msg = format!("{file}: {why}");
-                (file, Err(msg))
-            }
-            Input::File(p) => {
-                let file = batch::display(&p);
-                let result = batch::read(&p).and_then(|text| {
-                    let system =
-                        System::from_ron_str(&text, Some(&file)).map_err(|e| e.to_string())?;
-                    let analysis =
-                        analyze(&system, &options).map_err(|e| format!("{file}: {e}"))?;
-                    let structural = if settings.structural {
-                        let s = Structural::new(&system, &analysis)
-                            .map_err(|e| format!("{file}: structural: {e}"))?;
-                        Some(s)
-                    } else {
-                        None
-                    };
-                    Ok((system, analysis, structural))
-                });
-                (file, result)
-            }
-        };
+    for (file, system) in batch::models(paths) {
+        let result = system.and_then(|system| {
+            let analysis = analyze(&system, &options).map_err(|e| format!("{file}: {e}"))?;
+            let structural = if settings.structural {
+                let s = Structural::new(&system, &analysis)
+                    .map_err(|e| format!("{file}: structural: {e}"))?;
+                Some(s)
+            } else {
+                None
+            };
+            Ok((system, analysis, structural))
+        });
         match result {
             Ok((system, analysis, s)) => {
                 if settings.dot.is_some()
@@ -299,13 +285,7 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
             }
             Err(message) => {
                 failed += 1;
-                match settings.format {
-                    Format::Json => out.line(&batch::json_error(&file, &message)),
-                    Format::Text => {
-                        out.flush();
-                        eprintln!("error: {message}");
-                    }
-                }
+                out.failure(settings.format, &file, &message);
             }
         }
     }

@@ -46,6 +46,27 @@ fn walk(dir: &Path, files: &mut Vec<PathBuf>) -> io::Result<()> {
     Ok(())
 }
 
+/// Every model the paths stand for, in order: its display name, and the validated system or
+/// the message of why it could not be read (naming the file).
+pub(crate) fn models(
+    paths: &[PathBuf],
+) -> impl Iterator<Item = (String, Result<gcs_model::System, String>)> {
+    expand(paths).into_iter().map(|input| match input {
+        Input::Missing(p, why) => {
+            let file = display(&p);
+            let msg = format!("{file}: {why}");
+            (file, Err(msg))
+        }
+        Input::File(p) => {
+            let file = display(&p);
+            let result = read(&p).and_then(|text| {
+                gcs_model::System::from_ron_str(&text, Some(&file)).map_err(|e| e.to_string())
+            });
+            (file, result)
+        }
+    })
+}
+
 /// The display form of a path in reports: as given, with `/` separators.
 pub(crate) fn display(path: &Path) -> String {
     path.display().to_string().replace('\\', "/")
@@ -78,6 +99,17 @@ impl Out {
 
     pub(crate) fn flush(&mut self) {
         let _ = self.lock.flush();
+    }
+
+    /// Reports a file that failed: its JSON line, or `error: …` on standard error.
+    pub(crate) fn failure(&mut self, format: crate::Format, file: &str, message: &str) {
+        match format {
+            crate::Format::Json => self.line(&json_error(file, message)),
+            crate::Format::Text => {
+                self.flush();
+                eprintln!("error: {message}");
+            }
+        }
     }
 }
 

@@ -3,11 +3,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gcs_model::System;
 use serde::Serialize;
 
 use crate::Format;
-use crate::batch::{self, Input, Out};
+use crate::batch::{self, Out};
 
 #[derive(Serialize)]
 struct CheckReport<'a> {
@@ -26,21 +25,7 @@ struct CheckReport<'a> {
 pub(crate) fn run(paths: &[PathBuf], format: Format) -> ExitCode {
     let mut out = Out::new();
     let mut failed = 0;
-    for input in batch::expand(paths) {
-        let (file, result) = match input {
-            Input::Missing(p, why) => {
-                let file = batch::display(&p);
-                let msg = format!("{file}: {why}");
-                (file, Err(msg))
-            }
-            Input::File(p) => {
-                let file = batch::display(&p);
-                let result = batch::read(&p).and_then(|text| {
-                    System::from_ron_str(&text, Some(&file)).map_err(|e| e.to_string())
-                });
-                (file, result)
-            }
-        };
+    for (file, result) in batch::models(paths) {
         match result {
             Ok(system) => {
                 let report = CheckReport {
@@ -62,13 +47,7 @@ pub(crate) fn run(paths: &[PathBuf], format: Format) -> ExitCode {
             }
             Err(message) => {
                 failed += 1;
-                match format {
-                    Format::Json => out.line(&batch::json_error(&file, &message)),
-                    Format::Text => {
-                        out.flush();
-                        eprintln!("error: {message}");
-                    }
-                }
+                out.failure(format, &file, &message);
             }
         }
     }

@@ -224,14 +224,9 @@ fn supports<F: Field>(
         .collect()
 }
 
-/// `rank(T) − rank(J·T)` in the field `F` with the given options.
-fn trivial_motions<F: Field>(
-    jacobian: &Jacobian<F>,
-    generators: &[Vec<F>],
-    options: EchelonOptions,
-) -> usize {
-    let k = generators.len();
-    let t_rows: Vec<SparseRow<F>> = generators
+/// The displacement generators as sparse rows.
+fn generator_rows<F: Field>(generators: &[Vec<F>]) -> Vec<SparseRow<F>> {
+    generators
         .iter()
         .map(|g| {
             SparseRow::from_entries(
@@ -242,16 +237,34 @@ fn trivial_motions<F: Field>(
                     .collect(),
             )
         })
-        .collect();
-    let rank_t = analyse_rows(jacobian.ncols, t_rows, options.clone()).rank;
-    let jt = jacobian.rows.iter().map(|row| {
+        .collect()
+}
+
+/// The rows of `J·T`: each Jacobian row applied to the `k` generators.
+fn jt_rows<'j, F: Field>(
+    jacobian: &'j Jacobian<F>,
+    generators: &'j [Vec<F>],
+) -> impl Iterator<Item = SparseRow<F>> + 'j {
+    jacobian.rows.iter().map(move |row| {
         SparseRow::from_entries(
-            (0..k)
+            (0..generators.len())
                 .map(|j| (j, row.dot_dense(&generators[j])))
                 .filter(|(_, v)| !v.is_zero())
                 .collect(),
         )
-    });
+    })
+}
+
+/// `rank(T) − rank(J·T)` in the field `F` with the given options.
+fn trivial_motions<F: Field>(
+    jacobian: &Jacobian<F>,
+    generators: &[Vec<F>],
+    options: EchelonOptions,
+) -> usize {
+    let k = generators.len();
+    let t_rows = generator_rows(generators);
+    let rank_t = analyse_rows(jacobian.ncols, t_rows, options.clone()).rank;
+    let jt = jt_rows(jacobian, generators);
     let mut e = Echelon::new(k, options);
     for r in jt {
         if e.rank() == k {
@@ -565,32 +578,10 @@ fn exact_trivial_motions(
     generators: &[Vec<BigRational>],
 ) -> Result<usize, AnalysisError> {
     let k = generators.len();
-    let t_rows: Vec<SparseRow<BigRational>> = generators
-        .iter()
-        .map(|g| {
-            SparseRow::from_entries(
-                g.iter()
-                    .enumerate()
-                    .filter(|(_, v)| !v.is_zero())
-                    .map(|(i, v)| (i, v.clone()))
-                    .collect(),
-            )
-        })
-        .collect();
+    let t_rows = generator_rows(generators);
     let (t, _) = analyse_rows_exact(jacobian.ncols, &t_rows, false)?;
-    let jt: Vec<SparseRow<BigRational>> = jacobian
-        .rows
-        .iter()
-        .map(|row| {
-            SparseRow::from_entries(
-                (0..k)
-                    .map(|j| (j, row.dot_dense(&generators[j])))
-                    .filter(|(_, v)| !v.is_zero())
-                    .collect(),
-            )
-        })
-        .filter(|r| !r.is_zero())
-        .collect();
+    let jt: Vec<SparseRow<BigRational>> =
+        jt_rows(jacobian, generators).filter(|r| !r.is_zero()).collect();
     let (jt, _) = analyse_rows_exact(k, &jt, false)?;
     Ok(t.rank - jt.rank)
 }

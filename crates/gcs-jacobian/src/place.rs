@@ -286,22 +286,7 @@ impl Placer<'_> {
         let jitter: Vec<f64> = (0..k).map(|_| 1e-3 * (2.0 * self.rng.unit_f64() - 1.0)).collect();
         let w: Vec<f64> = w.iter().zip(&jitter).map(|(a, b)| a + b).collect();
         let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
-        let row = |i: usize, j: usize| {
-            // normal_i u_j − normal_j u_i = 0
-            let mut g = vec![Q::ZERO; n];
-            g[i] = u[j].clone();
-            g[j] = -u[i].clone();
-            (g, Q::ZERO)
-        };
-        if k == 2 {
-            vec![row(0, 1)]
-        } else {
-            // Two of the three components of n × u, independent since u ≠ 0.
-            let big = (0..3)
-                .max_by(|a, b| qla::to_f64(&u[*a]).abs().total_cmp(&qla::to_f64(&u[*b]).abs()))
-                .unwrap_or(2);
-            (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
-        }
+        parallel_to(&u, n, None)
     }
 
     /// Linear equations putting `x − other` along a rational unit vector near the direction
@@ -317,22 +302,7 @@ impl Placer<'_> {
             })
             .collect();
         let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
-        // (x − o)_i u_j − (x − o)_j u_i = 0
-        let row = |i: usize, j: usize| {
-            let mut g = vec![Q::ZERO; n];
-            g[i] = u[j].clone();
-            g[j] = -u[i].clone();
-            let rhs = &other[i] * &u[j] - &other[j] * &u[i];
-            (g, rhs)
-        };
-        if n == 2 {
-            vec![row(0, 1)]
-        } else {
-            let big = (0..3)
-                .max_by(|a, b| qla::to_f64(&u[*a]).abs().total_cmp(&qla::to_f64(&u[*b]).abs()))
-                .unwrap_or(2);
-            (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
-        }
+        parallel_to(&u, n, Some(other))
     }
 
     fn random_small(&mut self) -> Q {
@@ -741,6 +711,28 @@ impl Placer<'_> {
         let bq: Vec<Q> = b.iter().zip(&noise).map(|(x, n)| qla::approx(x + n, 1 << 24)).collect();
         let hb = qla::reflection(&bq).unwrap_or_else(|| identity(k));
         qla::matmul(&hb, &ha)
+    }
+}
+
+/// Linear equations making `x − origin` (or `x` when there is no origin), restricted to its
+/// first `u.len()` coordinates, parallel to `u`: one in 2D, two (independent: the components
+/// opposite the largest of `u`) in 3D.
+fn parallel_to(u: &[Q], n: usize, origin: Option<&[Q]>) -> Vec<(Vec<Q>, Q)> {
+    // (x − o)_i u_j − (x − o)_j u_i = 0
+    let row = |i: usize, j: usize| {
+        let mut g = vec![Q::ZERO; n];
+        g[i] = u[j].clone();
+        g[j] = -u[i].clone();
+        let rhs = origin.map_or(Q::ZERO, |o| &o[i] * &u[j] - &o[j] * &u[i]);
+        (g, rhs)
+    };
+    if u.len() == 2 {
+        vec![row(0, 1)]
+    } else {
+        let big = (0..3)
+            .max_by(|a, b| qla::to_f64(&u[*a]).abs().total_cmp(&qla::to_f64(&u[*b]).abs()))
+            .unwrap_or(2);
+        (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
     }
 }
 
