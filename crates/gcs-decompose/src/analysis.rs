@@ -59,7 +59,11 @@ pub struct AnalysisOptions {
     pub backend: Backend,
     /// The witness search (its seed is the report's seed).
     pub witness: WitnessOptions,
-    /// Whether to W-decompose every cluster (witness paper §5).
+    /// Whether to compute the clusters (maximal rigid subsystems). On by default; turning it
+    /// off leaves `clusters` empty and saves their cost when only the rank and the
+    /// redundancies are wanted.
+    pub clusters: bool,
+    /// Whether to W-decompose every cluster (witness paper §5); needs `clusters`.
     pub decompose: bool,
     /// Which constraint the W-decomposition tries to remove first.
     pub removal_order: RemovalOrder,
@@ -76,6 +80,7 @@ impl Default for AnalysisOptions {
         AnalysisOptions {
             backend: Backend::Exact,
             witness: WitnessOptions::default(),
+            clusters: true,
             decompose: false,
             removal_order: RemovalOrder::default(),
             cluster_method: ClusterMethod::default(),
@@ -139,7 +144,8 @@ pub struct Analysis {
     pub redundant: Vec<Redundancy>,
     /// The maximal rigid subsystems, sorted by first entity (file order).
     pub clusters: Vec<Cluster>,
-    /// The arithmetic the clusters were decided in (`"rational"`, `"modp"` or `"float"`).
+    /// The arithmetic the clusters were decided in (`"rational"`, `"modp"` or `"float"`;
+    /// `"none"` when they were not asked for).
     pub clusters_arithmetic: &'static str,
     /// With [`AnalysisOptions::decompose`]: the W-decomposition of every cluster, in the order
     /// of `clusters`.
@@ -389,6 +395,7 @@ pub fn analyze_at(
         r.spanning_group.dedup();
     }
     let ((clusters, decomposition), clusters_arithmetic) = match options.backend {
+        _ if !options.clusters => ((Vec::new(), None), "none"),
         Backend::Float { tolerance } => (
             clusters_in::<f64>(
                 system,

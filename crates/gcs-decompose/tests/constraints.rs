@@ -21,6 +21,7 @@ fn independent(dim: u8, entities: &str, constraints: &str) {
             let options = AnalysisOptions {
                 backend,
                 witness: WitnessOptions { seed, rounds: 1 },
+                clusters: false,
                 ..AnalysisOptions::default()
             };
             let a = analyze(&s, &options).unwrap_or_else(|e| panic!("{constraints}: {e}"));
