@@ -1,3 +1,129 @@
 //! Support code shared by the workspace-level integration tests (`tests/`) and the criterion
 //! benchmarks (`benches/`) of gcs. Nothing here is published; the library crates live in
 //! `crates/`.
+//!
+//! - [`data_files`] and [`load`]: the example models of `data/`, in sorted path order;
+//! - [`rebuild`] and [`strip_unfixed_sketch`]: the same system rebuilt with
+//!   [`SystemBuilder`], with sketch positions removed, so that a witness must be generated.
+//!
+//! Only `gcs-model` is a dependency here; helpers that need the analysis live in
+//! `tests/common/mod.rs`.
+
+use std::path::{Path, PathBuf};
+
+use gcs_model::{ConstraintKind, EntityIdx, Geometry, System, SystemBuilder};
+
+/// The workspace root (the directory of the root `Cargo.toml`).
+pub fn workspace_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Every `*.ron` file below `data/`, recursively, as paths relative to the workspace root
+/// with `/` separators (`data/paper/kite.ron`), in sorted order — the order `gcs analyze
+/// data/` uses.
+///
+/// # Panics
+/// When `data/` cannot be listed or holds no model.
+pub fn data_files() -> Vec<String> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        let entries =
+            std::fs::read_dir(dir).unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()));
+        for entry in entries {
+            let path =
+                entry.unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display())).path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "ron") {
+                out.push(path);
+            }
+        }
+    }
+    let root = workspace_root();
+    let mut files = Vec::new();
+    walk(&root.join("data"), &mut files);
+    files.sort();
+    let out: Vec<String> = files
+        .iter()
+        .map(|p| {
+            p.strip_prefix(&root)
+                .expect("below the root")
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect::<Vec<_>>()
+                .join("/")
+        })
+        .collect();
+    assert!(out.len() >= 10, "data/ should hold the example models, found {out:?}");
+    out
+}
+
+/// Reads and validates a model; `file` is relative to the workspace root.
+///
+/// # Panics
+/// When the file cannot be read or is not a valid model (the shipped models all are).
+pub fn load(file: &str) -> System {
+    let text = std::fs::read_to_string(workspace_root().join(file))
+        .unwrap_or_else(|e| panic!("cannot read {file}: {e}"));
+    System::from_ron_str(&text, Some(file)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The system rebuilt with [`SystemBuilder`], entity by entity and constraint by constraint in
+/// the same order, with the same ids, kinds, arguments and values; the sketch fields of the
+/// entities for which `keep_sketch` is false are left out (`None`).
+///
+/// # Panics
+/// When the builder rejects what the reader accepted (a bug in either).
+pub fn rebuild(system: &System, keep_sketch: impl Fn(EntityIdx) -> bool) -> System {
+    let mut b = SystemBuilder::new(system.name(), system.dim());
+    for e in system.entity_indices() {
+        let entity = system.entity(e);
+        let id = entity.id.as_str();
+        let keep = keep_sketch(e);
+        let r = match &entity.geometry {
+            Geometry::Point { at } => b.point(id, at.clone().filter(|_| keep)),
+            Geometry::Line { at } => b.line(id, at.clone().filter(|_| keep)),
+            Geometry::Plane { at } => b.plane(id, at.clone().filter(|_| keep)),
+            Geometry::Segment { from, to } => {
+                b.segment(id, &system.entity(*from).id, &system.entity(*to).id)
+            }
+            Geometry::Circle { center, radius } => {
+                b.circle(id, center.clone().filter(|_| keep), radius.clone().filter(|_| keep))
+            }
+            Geometry::Sphere { center, radius } => {
+                b.sphere(id, center.clone().filter(|_| keep), radius.clone().filter(|_| keep))
+            }
+        };
+        r.unwrap_or_else(|err| panic!("{}: rebuilding entity {id}: {err}", system.name()));
+    }
+    for c in system.constraint_indices() {
+        let con = system.constraint(c);
+        let args: Vec<&str> = con.args.iter().map(|e| system.entity(*e).id.as_str()).collect();
+        b.constraint(con.kind, &con.id, &args, con.value.clone()).unwrap_or_else(|err| {
+            panic!("{}: rebuilding constraint {}: {err}", system.name(), con.id)
+        });
+    }
+    b.build()
+}
+
+/// The entities pinned by a `Fix`: its argument and, for a fixed segment, the segment's two
+/// points (a `Fix` needs their sketch positions).
+pub fn fixed_entities(system: &System) -> Vec<bool> {
+    let mut fixed = vec![false; system.entities().len()];
+    for c in system.constraints().iter().filter(|c| c.kind == ConstraintKind::Fix) {
+        for &e in &c.args {
+            fixed[e.index()] = true;
+            if let Some((p, q)) = system.segment_points(e) {
+                fixed[p.index()] = true;
+                fixed[q.index()] = true;
+            }
+        }
+    }
+    fixed
+}
+
+/// The system without the sketch positions of every entity not pinned by a `Fix`, so that
+/// the witness analysis has to generate a witness.
+pub fn strip_unfixed_sketch(system: &System) -> System {
+    let fixed = fixed_entities(system);
+    rebuild(system, |e| fixed[e.index()])
+}

@@ -246,16 +246,35 @@ fn generator_rows<F: Field>(generators: &[Vec<F>]) -> Vec<SparseRow<F>> {
         .collect()
 }
 
-/// The rows of `J·T`: each Jacobian row applied to the `k` generators.
+/// The rows of `J·T`: each Jacobian row applied to the `k` generators. With a tolerance
+/// (float), a product that cancels below `tolerance` times the sum of its terms' magnitudes is
+/// rounding noise (a row invariant under a displacement gives exactly 0 over ℚ) and is
+/// dropped.
 fn jt_rows<'j, F: Field>(
     jacobian: &'j Jacobian<F>,
     generators: &'j [Vec<F>],
+    tolerance: Option<f64>,
 ) -> impl Iterator<Item = SparseRow<F>> + 'j {
     jacobian.rows.iter().map(move |row| {
         SparseRow::from_entries(
             (0..generators.len())
-                .map(|j| (j, row.dot_dense(&generators[j])))
-                .filter(|(_, v)| !v.is_zero())
+                .filter_map(|j| {
+                    let v = row.dot_dense(&generators[j]);
+                    if v.is_zero() {
+                        return None;
+                    }
+                    if let Some(t) = tolerance {
+                        let terms: f64 = row
+                            .entries()
+                            .iter()
+                            .map(|(c, a)| a.magnitude() * generators[j][*c].magnitude())
+                            .sum();
+                        if v.magnitude() <= t * terms {
+                            return None;
+                        }
+                    }
+                    Some((j, v))
+                })
                 .collect(),
         )
     })
@@ -270,7 +289,7 @@ fn trivial_motions<F: Field>(
     let k = generators.len();
     let t_rows = generator_rows(generators);
     let rank_t = analyse_rows(jacobian.ncols, t_rows, options.clone()).rank;
-    let jt = jt_rows(jacobian, generators);
+    let jt = jt_rows(jacobian, generators, options.tolerance);
     let mut e = Echelon::new(k, options);
     for r in jt {
         if e.rank() == k {
@@ -278,7 +297,7 @@ fn trivial_motions<F: Field>(
         }
         e.insert(r);
     }
-    rank_t - e.rank()
+    rank_t.saturating_sub(e.rank())
 }
 
 fn generic<F: Field>(
@@ -358,8 +377,17 @@ pub fn analyze_at(
                 generic::<f64>(system, layout, &witness, EchelonOptions::float(tolerance))?;
             let jacobian: Jacobian<f64> = witness.jacobian(system, layout)?;
             if jacobian.ncols.saturating_mul(jacobian.rows.len()) <= QR_LIMIT {
-                outcome.float_qr_rank =
-                    Some(float_rank_qr(jacobian.ncols, &jacobian.rows, tolerance));
+                // Rows scaled to a largest entry of 1 first: the QR threshold is relative to
+                // |R₀₀|, and constraint rows differ in scale by orders of magnitude.
+                let scaled: Vec<SparseRow<f64>> = jacobian
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        let m = r.entries().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
+                        if m > 0.0 { r.scaled(&(1.0 / m)) } else { r.clone() }
+                    })
+                    .collect();
+                outcome.float_qr_rank = Some(float_rank_qr(jacobian.ncols, &scaled, tolerance));
             }
             (outcome, n, internal)
         }
@@ -451,7 +479,7 @@ pub fn analyze_at(
 /// Systems with at most this many unknowns get their clusters decided over ℚ by the exact
 /// backend; larger ones (and W-decompositions, which compute clusters many times) modulo the
 /// 61-bit prime — exact with overwhelming probability; the rank stays proven either way.
-const EXACT_CLUSTER_LIMIT: usize = 400;
+const EXACT_CLUSTER_LIMIT: usize = 64;
 
 /// Clusters, and the decomposition when asked for.
 type ClusterResult = (Vec<Cluster>, Option<(Vec<DecompositionNode>, Statistics)>);
@@ -588,7 +616,7 @@ fn exact_trivial_motions(
     let t_rows = generator_rows(generators);
     let (t, _) = analyse_rows_exact(jacobian.ncols, &t_rows, false)?;
     let jt: Vec<SparseRow<BigRational>> =
-        jt_rows(jacobian, generators).filter(|r| !r.is_zero()).collect();
+        jt_rows(jacobian, generators, None).filter(|r| !r.is_zero()).collect();
     let (jt, _) = analyse_rows_exact(k, &jt, false)?;
     Ok(t.rank - jt.rank)
 }

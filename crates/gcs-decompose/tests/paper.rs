@@ -267,8 +267,11 @@ struct Claim {
     /// Clusters stated by the header, as `(entities, constraints)`; `None` for the
     /// constraints when the header lists only the entities. `None` when the header does not
     /// list all clusters.
-    clusters: Option<&'static [(&'static [&'static str], Option<&'static [&'static str]>)]>,
+    clusters: Option<&'static [HeaderCluster]>,
 }
+
+/// A cluster as a header states it: its entities, and its constraints when listed.
+type HeaderCluster = (&'static [&'static str], Option<&'static [&'static str]>);
 
 const K4_R: &[&str] = &["r1r2", "r1r3", "r1r4", "r2r3", "r2r4"];
 const K4_S: &[&str] = &["s1s2", "s1s3", "s1s4", "s2s3", "s2s4"];

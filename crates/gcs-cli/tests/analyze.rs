@@ -1,0 +1,395 @@
+//! `gcs analyze` end to end: the JSON Lines report of format §2 (every required field, with
+//! its type, for every model, in sorted file order), failures that do not stop the batch,
+//! the reported tolerance and seed, exit codes, determinism; and golden reports of every
+//! model of `data/`, JSON and text, in `tests/expected/analyze/` beside this file.
+//!
+//! Golden files are regenerated with `UPDATE_EXPECT=1 cargo test -p gcs-cli --test analyze`
+//! (rust-analyzer's expect-test convention), so that any change in a report shows as a diff.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn gcs(args: &[&str]) -> (i32, String, String) {
+    let out =
+        Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root()).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+fn json_lines(stdout: &str) -> Vec<Value> {
+    stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("not JSON ({e}): {l}")))
+        .collect()
+}
+
+/// The models of `data/`, relative to the root, sorted (the order of `gcs analyze data/`).
+fn data_files() -> Vec<String> {
+    fn walk(dir: &Path, base: &Path, out: &mut Vec<String>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, base, out);
+            } else if path.extension().is_some_and(|e| e == "ron") {
+                let rel = path.strip_prefix(base).unwrap();
+                out.push(
+                    rel.components()
+                        .map(|c| c.as_os_str().to_string_lossy())
+                        .collect::<Vec<_>>()
+                        .join("/"),
+                );
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(&root().join("data"), &root(), &mut out);
+    out.sort();
+    assert!(out.len() >= 10, "{out:?}");
+    out
+}
+
+fn uint(v: &Value, field: &str) -> u64 {
+    v[field].as_u64().unwrap_or_else(|| panic!("{field} must be an unsigned integer in {v}"))
+}
+
+fn string<'a>(v: &'a Value, field: &str) -> &'a str {
+    v[field].as_str().unwrap_or_else(|| panic!("{field} must be a string in {v}"))
+}
+
+fn boolean(v: &Value, field: &str) -> bool {
+    v[field].as_bool().unwrap_or_else(|| panic!("{field} must be a boolean in {v}"))
+}
+
+fn strings(v: &Value, field: &str) -> Vec<String> {
+    v[field]
+        .as_array()
+        .unwrap_or_else(|| panic!("{field} must be an array in {v}"))
+        .iter()
+        .map(|s| s.as_str().unwrap_or_else(|| panic!("{field}: strings, in {v}")).to_owned())
+        .collect()
+}
+
+/// Checks every field format §2 requires, its type, and the relations between them.
+fn check_report(v: &Value, file: &str) {
+    assert_eq!(v["schema"], 1, "{v}");
+    assert_eq!(string(v, "file"), file);
+    let stem = Path::new(file).file_stem().unwrap().to_string_lossy();
+    assert_eq!(string(v, "model"), stem, "the shipped models are named after their file");
+    let dim = uint(v, "dim");
+    assert!(dim == 2 || dim == 3, "{v}");
+    assert!(["exact", "rational", "rug", "modp", "float"].contains(&string(v, "backend")));
+    assert!(["sketch", "perturbed", "generated"].contains(&string(v, "witness")), "{v}");
+    let (unknowns, equations, rank) = (uint(v, "unknowns"), uint(v, "equations"), uint(v, "rank"));
+    assert!(uint(v, "entities") > 0 && uint(v, "constraints") > 0, "{v}");
+    assert!(rank <= unknowns.min(equations), "{v}");
+    let (dof_absolute, trivial, dof) =
+        (uint(v, "dof_absolute"), uint(v, "trivial_motions"), uint(v, "dof"));
+    assert_eq!(dof_absolute, unknowns - rank, "{file}: dof_absolute = unknowns − rank");
+    assert!(trivial <= 3 * (dim - 1), "{file}: at most 3 (2D) or 6 (3D) trivial motions");
+    assert_eq!(dof, dof_absolute - trivial, "{file}: dof = dof_absolute − trivial_motions");
+    let redundant = v["redundant"].as_array().unwrap_or_else(|| panic!("redundant: array in {v}"));
+    assert_eq!(boolean(v, "rigid"), dof == 0, "{file}");
+    assert_eq!(boolean(v, "well_constrained"), dof == 0 && redundant.is_empty(), "{file}");
+    for r in redundant {
+        assert!(!string(r, "constraint").is_empty());
+        let (rows, doc) = (uint(r, "rows"), uint(r, "doc"));
+        assert!(1 <= rows && rows <= doc, "{file}: {r}");
+        let group = strings(r, "spanning_group");
+        assert!(!group.contains(&string(r, "constraint").to_owned()), "{file}: {r}");
+    }
+}
+
+#[test]
+fn json_lines_for_every_model_in_sorted_order() {
+    let (code, stdout, stderr) = gcs(&["analyze", "--format", "json", "data/"]);
+    assert_eq!(code, 0, "{stderr}");
+    let reports = json_lines(&stdout);
+    let files = data_files();
+    let got: Vec<&str> = reports.iter().map(|v| string(v, "file")).collect();
+    assert_eq!(
+        got,
+        files.iter().map(String::as_str).collect::<Vec<_>>(),
+        "one report per model, sorted"
+    );
+    for (v, file) in reports.iter().zip(&files) {
+        check_report(v, file);
+        assert_eq!(v["backend"], "exact", "the default backend");
+        assert_eq!(v["seed"], 1, "the default seed is reported");
+    }
+    // Not vacuous: the reports cover both dimensions, redundancy and fixed sketches.
+    assert!(reports.iter().any(|v| v["dim"] == 3) && reports.iter().any(|v| v["dim"] == 2));
+    assert!(reports.iter().any(|v| !v["redundant"].as_array().unwrap().is_empty()));
+    assert!(reports.iter().any(|v| v["trivial_motions"] == 0));
+}
+
+/// Format §2: `clusters`, each with its entities and constraints; every entity is in one.
+#[test]
+fn json_reports_carry_the_clusters() {
+    let (code, stdout, _) =
+        gcs(&["analyze", "--format", "json", "data/paper/kite.ron", "data/sketches/four_bar.ron"]);
+    assert_eq!(code, 0);
+    for v in json_lines(&stdout) {
+        let clusters =
+            v["clusters"].as_array().unwrap_or_else(|| panic!("no clusters array in {v}"));
+        assert!(!clusters.is_empty(), "{v}");
+        let mut covered = BTreeSet::new();
+        for c in clusters {
+            covered.extend(strings(c, "entities"));
+            strings(c, "constraints");
+        }
+        assert_eq!(covered.len() as u64, uint(&v, "entities"), "every entity is in a cluster: {v}");
+    }
+}
+
+#[test]
+fn a_bad_file_is_reported_and_the_batch_goes_on() {
+    let (code, stdout, _) = gcs(&[
+        "analyze",
+        "--format",
+        "json",
+        "data/paper/kite.ron",
+        "crates/gcs-model/tests/bad/unknown_id.ron",
+        "no/such/file.ron",
+        "data/paper/butterfly.ron",
+    ]);
+    assert_eq!(code, 1, "some files failed");
+    let lines = json_lines(&stdout);
+    assert_eq!(lines.len(), 4);
+    check_report(&lines[0], "data/paper/kite.ron");
+    check_report(&lines[3], "data/paper/butterfly.ron");
+    let error = &lines[1];
+    let keys: BTreeSet<&str> = error.as_object().unwrap().keys().map(String::as_str).collect();
+    assert_eq!(keys, ["error", "file", "schema"].into(), "{error}");
+    assert_eq!(error["schema"], 1);
+    assert_eq!(error["file"], "crates/gcs-model/tests/bad/unknown_id.ron");
+    assert_eq!(
+        error["error"],
+        "crates/gcs-model/tests/bad/unknown_id.ron:4:48: constraint \"d\": field b: unknown entity id \"r\""
+    );
+    assert_eq!(lines[2]["file"], "no/such/file.ron");
+    assert!(string(&lines[2], "error").starts_with("no/such/file.ron"), "{}", lines[2]);
+
+    // Text: reports on stdout, one error line on stderr, same exit status.
+    let (code, stdout, stderr) =
+        gcs(&["analyze", "data/paper/kite.ron", "crates/gcs-model/tests/bad/unknown_id.ron"]);
+    assert_eq!(code, 1);
+    assert!(stdout.starts_with("data/paper/kite.ron: kite"), "{stdout}");
+    assert!(!stdout.contains("unknown_id"), "{stdout}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with("error: crates/gcs-model/tests/bad/unknown_id.ron:4:48:"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn the_float_backend_reports_its_tolerance() {
+    let file = "data/paper/kite.ron";
+    let (code, stdout, _) =
+        gcs(&["analyze", "--format", "json", "--backend", "float", "--tolerance", "1e-6", file]);
+    assert_eq!(code, 0);
+    let v = &json_lines(&stdout)[0];
+    check_report(v, file);
+    assert_eq!(v["backend"], "float");
+    assert_eq!(v["tolerance"].as_f64(), Some(1e-6), "{v}");
+    assert_eq!(v["rank"], 5);
+    // The default tolerance is reported too.
+    let (_, stdout, _) = gcs(&["analyze", "--format", "json", "--backend", "float", file]);
+    assert_eq!(json_lines(&stdout)[0]["tolerance"].as_f64(), Some(1e-9));
+    // And in text.
+    let (_, stdout, _) = gcs(&["analyze", "--backend", "float", "--tolerance", "1e-6", file]);
+    assert!(stdout.contains("float arithmetic") && stdout.contains("tolerance 1e-6"), "{stdout}");
+}
+
+#[test]
+fn every_backend_is_named_in_the_report() {
+    let file = "data/paper/double_banana.ron";
+    for backend in ["exact", "rational", "modp", "float"] {
+        let (code, stdout, stderr) =
+            gcs(&["analyze", "--format", "json", "--backend", backend, file]);
+        assert_eq!(code, 0, "{backend}: {stderr}");
+        let v = &json_lines(&stdout)[0];
+        check_report(v, file);
+        assert_eq!(v["backend"], backend);
+        assert_eq!((uint(v, "rank"), uint(v, "dof")), (17, 1), "{backend}");
+    }
+}
+
+#[test]
+fn the_seed_is_reported() {
+    let (code, stdout, stderr) =
+        gcs(&["analyze", "--format", "json", "--seed", "42", "data/paper/kite.ron"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(json_lines(&stdout)[0]["seed"], 42);
+    let (_, stdout, _) = gcs(&["analyze", "--seed", "42", "data/paper/kite.ron"]);
+    assert!(stdout.contains("seed 42"), "{stdout}");
+
+    // A model with an incomplete sketch needs a generated witness: the seed is used there,
+    // and any seed, the largest included, gives the same verdict.
+    let file = "crates/gcs-model/tests/good/zoo2d.ron";
+    let verdict = |seed: &str| {
+        let (code, stdout, stderr) = gcs(&["analyze", "--format", "json", "--seed", seed, file]);
+        assert_eq!(code, 0, "{stderr}");
+        let v = json_lines(&stdout).remove(0);
+        assert_eq!(v["witness"], "generated");
+        assert_eq!(v["seed"].as_u64().map(|s| s.to_string()).as_deref(), Some(seed));
+        (v["rank"].clone(), v["trivial_motions"].clone(), v["dof"].clone(), v["redundant"].clone())
+    };
+    assert_eq!(verdict("42"), verdict("18446744073709551615"));
+}
+
+#[test]
+fn usage_errors_exit_with_two() {
+    for args in [
+        &["analyze"][..],
+        &["analyze", "--backend", "nope", "data/paper/kite.ron"],
+        &["analyze", "--format", "xml", "data/paper/kite.ron"],
+        &["analyze", "--seed", "abc", "data/paper/kite.ron"],
+        &["analyze", "--seed", "-1", "data/paper/kite.ron"],
+        &["analyze", "--tolerance", "-1", "data/paper/kite.ron"],
+        &["analyze", "--tolerance", "NaN", "--backend", "float", "data/paper/kite.ron"],
+        &["analyze", "--frobnicate", "data/paper/kite.ron"],
+    ] {
+        let (code, stdout, _) = gcs(args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(stdout.is_empty(), "{args:?}: nothing on stdout on a usage error");
+    }
+    if !cfg!(feature = "rug") {
+        let (code, _, stderr) = gcs(&["analyze", "--backend", "rug", "data/paper/kite.ron"]);
+        assert_eq!(code, 2, "rug is not in this build: {stderr}");
+    }
+}
+
+#[test]
+fn reports_are_byte_identical_from_run_to_run() {
+    let args = ["analyze", "--format", "json", "data/"];
+    let (_, first, _) = gcs(&args);
+    let (_, second, _) = gcs(&args);
+    assert_eq!(first, second);
+    let (_, first, _) = gcs(&["analyze", "data/sketches"]);
+    let (_, second, _) = gcs(&["analyze", "data/sketches"]);
+    assert_eq!(first, second);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Golden reports
+
+/// Whether golden files are being regenerated.
+fn update_expect() -> bool {
+    std::env::var_os("UPDATE_EXPECT").is_some_and(|v| v == "1")
+}
+
+/// Compares `actual` with the golden file, or (re)writes it with `UPDATE_EXPECT=1`. A mismatch
+/// is returned as a message with a line diff (for one-line JSON, a field diff).
+fn expect_file(path: &Path, actual: &str) -> Result<(), String> {
+    if update_expect() {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        if std::fs::read_to_string(path).ok().as_deref() != Some(actual) {
+            std::fs::write(path, actual).unwrap();
+        }
+        return Ok(());
+    }
+    let Ok(expected) = std::fs::read_to_string(path) else {
+        return Err(format!("{}: missing (run with UPDATE_EXPECT=1 to create it)", path.display()));
+    };
+    if expected == actual {
+        return Ok(());
+    }
+    Err(format!(
+        "{} differs (UPDATE_EXPECT=1 accepts the new output):\n{}",
+        path.display(),
+        diff(&expected, actual)
+    ))
+}
+
+fn diff(expected: &str, actual: &str) -> String {
+    let parse = |s: &str| serde_json::from_str::<Value>(s.trim_end()).ok().filter(Value::is_object);
+    if let (Some(e), Some(a)) = (parse(expected), parse(actual)) {
+        let (e, a) = (e.as_object().unwrap(), a.as_object().unwrap());
+        let keys: BTreeSet<&String> = e.keys().chain(a.keys()).collect();
+        let mut out = String::new();
+        for k in keys {
+            if e.get(k) != a.get(k) {
+                out.push_str(&format!("  {k}: {:?} -> {:?}\n", e.get(k), a.get(k)));
+            }
+        }
+        if out.is_empty() {
+            out.push_str("  same fields and values; the order or the spacing changed\n");
+        }
+        return out;
+    }
+    let (e, a): (Vec<&str>, Vec<&str>) = (expected.lines().collect(), actual.lines().collect());
+    let mut out = String::new();
+    for i in 0..e.len().max(a.len()) {
+        if e.get(i) != a.get(i) {
+            if let Some(x) = e.get(i) {
+                out.push_str(&format!("  -{x}\n"));
+            }
+            if let Some(y) = a.get(i) {
+                out.push_str(&format!("  +{y}\n"));
+            }
+        }
+    }
+    out
+}
+
+fn expected_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/expected/analyze")
+}
+
+/// `data/paper/kite.ron` → `tests/expected/analyze/paper/kite.<ext>`.
+fn golden_path(file: &str, ext: &str) -> PathBuf {
+    let rel = Path::new(file).strip_prefix("data").unwrap().with_extension(ext);
+    expected_dir().join(rel)
+}
+
+fn golden(format: &str, ext: &str) {
+    let mut failures = Vec::new();
+    let mut wanted = BTreeSet::new();
+    for file in data_files() {
+        let (code, stdout, stderr) = gcs(&["analyze", "--format", format, &file]);
+        assert_eq!(code, 0, "{file}: {stderr}");
+        let path = golden_path(&file, ext);
+        wanted.insert(path.clone());
+        if let Err(e) = expect_file(&path, &stdout) {
+            failures.push(e);
+        }
+    }
+    // A golden file without a model is stale.
+    let mut stale = Vec::new();
+    for sub in ["paper", "sketches"] {
+        let Ok(entries) = std::fs::read_dir(expected_dir().join(sub)) else { continue };
+        for entry in entries {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == ext) && !wanted.contains(&path) {
+                if update_expect() {
+                    std::fs::remove_file(&path).unwrap();
+                } else {
+                    stale.push(path.display().to_string());
+                }
+            }
+        }
+    }
+    assert!(stale.is_empty(), "stale golden files (UPDATE_EXPECT=1 removes them): {stale:?}");
+    assert!(failures.is_empty(), "{} reports changed:\n{}", failures.len(), failures.join("\n"));
+}
+
+#[test]
+fn golden_json_reports() {
+    golden("json", "json");
+}
+
+#[test]
+fn golden_text_reports() {
+    golden("text", "txt");
+}
