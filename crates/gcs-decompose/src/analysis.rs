@@ -170,7 +170,7 @@ impl Analysis {
 }
 
 /// Dense matrices up to this many entries get the faer QR cross-check.
-const QR_LIMIT: usize = 4_000_000;
+const QR_LIMIT: usize = 1_000_000;
 
 /// Analyses a system: finds a witness, assembles the Jacobian there in the chosen arithmetic,
 /// inserts its rows in file order (entity-internal rows first) and reads off the rank, the

@@ -166,6 +166,8 @@ struct Search<'c, 'a, F> {
     /// Connected component of each object.
     component: Vec<usize>,
     ncols: usize,
+    /// Scale of the frame's columns (1 with exact arithmetic).
+    frame_scale: F,
     /// The rows inserted (for Algorithm 1, which eliminates again for each reference).
     rows: Vec<SparseRow<F>>,
 }
@@ -199,6 +201,28 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             }
             group_objs.push(objs);
         }
+        // The frame's coordinates are a parametrisation of the displacements; any scale does.
+        // Exact fields keep 1. With floats, threshold pivoting picks the largest entries: frame
+        // columns (shared by every absolute row) would become pivots early and fill every row,
+        // so they are scaled well below the model's entries (and its displacements back up).
+        let frame_scale = if ctx.options.tolerance.is_some() && has_frame {
+            let (mut model, mut framed) = (f64::INFINITY, 0.0f64);
+            for g in sub.groups.iter().filter(|g| g.absolute) {
+                for r in &g.rows {
+                    let m = r.entries().iter().map(|(_, v)| v.magnitude()).fold(0.0, f64::max);
+                    model = model.min(m);
+                    for t in &ctx.generators {
+                        framed = framed.max(r.dot_dense(t).magnitude());
+                    }
+                }
+            }
+            let s = if framed > 0.0 && model.is_finite() { 1e-3 * model / framed } else { 1.0 };
+            gcs_rank::BigRational::from_float(s.clamp(1e-12, 1.0))
+                .and_then(|q| F::from_rational(&q).ok())
+                .unwrap_or_else(F::one)
+        } else {
+            F::one()
+        };
         let mut rows: Vec<SparseRow<F>> = Vec::new();
         for e in &sub.entities {
             rows.extend(ctx.internal.get(e).into_iter().flatten().cloned());
@@ -208,7 +232,7 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
                 if g.absolute {
                     let mut entries = r.entries().to_vec();
                     for (j, t) in ctx.generators.iter().enumerate() {
-                        let v = r.dot_dense(t);
+                        let v = r.dot_dense(t).mul(&frame_scale);
                         if !v.is_zero() {
                             entries.push((ncols + j, v.neg()));
                         }
@@ -244,13 +268,27 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             }
             next += 1;
         }
-        Search { ctx, sub, echelon, frame, cols, group_objs, obj_groups, component, ncols, rows }
+        Search {
+            ctx,
+            sub,
+            echelon,
+            frame,
+            cols,
+            group_objs,
+            obj_groups,
+            component,
+            ncols,
+            frame_scale,
+            rows,
+        }
     }
 
     /// The row of the displacement generators at column `c` (for the frame: a unit vector).
     fn t_row(&self, c: usize) -> SparseRow<F> {
         if c >= self.ncols {
-            return SparseRow::from_entries(vec![(c - self.ncols, F::one())]);
+            // A displacement moves the (scaled) frame coordinate by 1/scale.
+            let inv = self.frame_scale.inv().unwrap_or_else(F::one);
+            return SparseRow::from_entries(vec![(c - self.ncols, inv)]);
         }
         SparseRow::from_entries(
             self.ctx
