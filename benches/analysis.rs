@@ -34,15 +34,10 @@ const FAMILIES: [(&str, &[usize]); 3] =
 /// single-run times (`GCS_BENCH_PROBE=1`) are in `BENCHMARKS.md`.
 fn measured(family: &str, backend: Backend, n: usize) -> bool {
     match (family, backend.name()) {
-        // The float elimination fills in with rounding noise on the rectangles.
-        ("rectangles", "float") => n <= 100,
-        ("laman", "float") => n <= 200,
         // Rational elimination with tracked combinations grows like the dense inverse.
         ("laman", "rational" | "rug") => n <= 50,
         ("sphere", "rational") => false,
         ("sphere", "rug") => n <= 50,
-        // Clusters are decided over ℚ up to 400 unknowns: laman-200 has exactly 400.
-        ("laman", "exact") => n != 200,
         _ => true,
     }
 }
