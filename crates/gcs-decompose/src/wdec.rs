@@ -17,10 +17,16 @@
 //! replaced by the subsystem it stands for) and kept only if rigid there.
 //!
 //! **Which constraint first.** The paper's §7 suggests trying constraints that appear in few
-//! chains. The heuristic used: constraints binding an entity of low degree come first (an
+//! chains. The default heuristic ([`RemovalOrder::FewShortCycles`]) ranks the constraints by
+//! how central they are (a central removal splits the system into halves of similar size, so
+//! the recursion is balanced: triangulated strips), then by how few short cycles go through
+//! them; after the most central one it turns to the constraints of low-degree entities (an
 //! entity attached by few constraints, such as a vertex added by a Henneberg move, is split off
-//! by removing one of them), then file order. [`Statistics`] counts the maximal rigid subsystem
-//! computations, so the saving over file order can be measured.
+//! by removing one of them: random Laman graphs, where central removals are fruitless).
+//! [`Statistics`] counts the maximal rigid subsystem computations, so the saving over file
+//! order can be measured.
+
+use std::collections::HashMap;
 
 use gcs_jacobian::relation_row;
 use gcs_model::{ConstraintIdx, ConstraintKind, Dim, EntityIdx, EntityKind, Shape, System};
@@ -31,9 +37,10 @@ use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
 /// Order in which constraints are tried for removal.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum RemovalOrder {
-    /// Constraints in few short cycles of the constraint graph first (triangles, then 4-cycles
-    /// through the constraint's entities), then central ones (equally far from the two ends of
-    /// a longest path found by a double breadth-first sweep), then file order (the default).
+    /// The most central constraint first (its entities equally far from the two ends of a
+    /// longest path found by a double breadth-first sweep; ties broken by few short cycles —
+    /// triangles, then 4-cycles — through its entities, then file order), then the others by
+    /// the lowest degree of their entities, in that same order within a degree (the default).
     #[default]
     FewShortCycles,
     /// Constraints binding low-degree entities first, then file order.
@@ -42,11 +49,33 @@ pub enum RemovalOrder {
     FileOrder,
 }
 
+/// How many constraints [`RemovalOrder::FewShortCycles`] tries in its central order before
+/// turning to the constraints of low-degree entities.
+const CENTRAL_TRIES: usize = 1;
+
+/// For each group of a subsystem, the smallest degree (number of groups binding it) among its
+/// entities.
+fn min_degree<F>(sub: &Subsystem<F>) -> Vec<usize> {
+    let mut degree: HashMap<EntityIdx, usize> = HashMap::new();
+    for g in &sub.groups {
+        for e in &g.entities {
+            *degree.entry(*e).or_default() += 1;
+        }
+    }
+    sub.groups
+        .iter()
+        .map(|g| g.entities.iter().map(|e| degree[e]).min().unwrap_or(usize::MAX))
+        .collect()
+}
+
 /// Counters of a W-decomposition.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Statistics {
     /// Maximal rigid subsystem computations (each one elimination plus anchoring).
     pub mrs_computations: usize,
+    /// Entities over all those computations: a measure of their total cost, which depends on
+    /// how balanced the recursion is as much as on how many computations it takes.
+    pub searched_entities: usize,
     /// Constraints removed without revealing a non-trivial subsystem.
     pub fruitless_removals: usize,
     /// Whether the decomposition ran to the end; false when the work budget was exhausted
@@ -219,15 +248,15 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 })
                 .collect();
             order.sort_by_key(|&g| (key[g], g));
+            // A few central tries, then the constraints of low-degree entities: where no
+            // central constraint splits the system (random Laman graphs), peeling a vertex
+            // added by a Henneberg move costs one try instead of dozens of fruitless ones.
+            let tries = CENTRAL_TRIES.min(order.len());
+            let degree = min_degree(sub);
+            order[tries..].sort_by_key(|&g| degree[g]);
         } else if self.order == RemovalOrder::LowDegreeFirst {
-            let degree =
-                |e: &EntityIdx| sub.groups.iter().filter(|g| g.entities.contains(e)).count();
-            let key: Vec<usize> = sub
-                .groups
-                .iter()
-                .map(|g| g.entities.iter().map(degree).min().unwrap_or(usize::MAX))
-                .collect();
-            order.sort_by_key(|&g| (key[g], g));
+            let degree = min_degree(sub);
+            order.sort_by_key(|&g| (degree[g], g));
         }
         order
     }
@@ -245,6 +274,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             let mut without = sub.clone();
             let removed = without.groups.remove(gi);
             self.stats.mrs_computations += 1;
+            self.stats.searched_entities += without.entities.len();
             let found = clusters(self.ctx, &without);
             let nontrivial: Vec<RawCluster> = found
                 .into_iter()
@@ -375,6 +405,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             sub.groups.iter().filter(|g| labels.contains(&g.label)).cloned().collect();
         let candidate = Subsystem { entities: entities.clone(), groups };
         self.stats.mrs_computations += 1;
+        self.stats.searched_entities += candidate.entities.len();
         let found = clusters(self.ctx, &candidate);
         if found.iter().any(|c| c.entities == entities) {
             vec![Node { entities, labels, children }]
