@@ -1,10 +1,12 @@
 //! Criterion benchmarks of the rigid subsystems (witness paper §4–§5) on generated families of
 //! growing size:
 //!
-//! - cluster finding with the three methods of `gcs_decompose::ClusterMethod` — the paper's
+//! - cluster finding with the four methods of `gcs_decompose::ClusterMethod` — the paper's
 //!   Algorithm 1 (one elimination per reference), Algorithm 2 (one elimination, pivot exchanges
-//!   per reference) and the kernel restriction (one elimination, no exchange) — on articulated
-//!   chains of triangles (as many clusters as triangles) and Laman frameworks with bars removed;
+//!   per reference), the kernel restriction (one elimination, no exchange) and the open-chain
+//!   shortcut (one small elimination per block; the kernel method where it does not apply) —
+//!   on articulated chains of triangles (as many clusters as triangles, an open chain) and
+//!   Laman frameworks with bars removed (not an open chain: the shortcut's overhead);
 //! - W-decomposition (Algorithm 3) of rigid systems: triangulated strips (up to 1,000 points,
 //!   the target size) and random Laman frameworks, with the default removal heuristic,
 //!   and on the small sizes with file order to show what the heuristic saves.
@@ -73,6 +75,7 @@ fn clusters(c: &mut Criterion) {
             ("kernel", ClusterMethod::Kernel),
             ("alg2-exchange", ClusterMethod::Exchange),
             ("alg1-eliminate", ClusterMethod::Eliminate),
+            ("open-chain", ClusterMethod::OpenChain),
         ] {
             // Algorithm 1 eliminates once per cluster: quadratic; keep it to moderate sizes.
             if method == ClusterMethod::Eliminate && system.entities().len() > 250 {

@@ -645,3 +645,125 @@ impl From<JacobianError> for AnalysisError {
         AnalysisError::Witness(e)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Whether the open-chain shortcut applies to a model of `data/` (modulo the prime, at the
+    /// default witness), and whether its clusters then equal the general search's.
+    fn shortcut(name: &str) -> bool {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data").join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        shortcut_on(&System::from_ron_str(&text, Some(name)).unwrap(), name)
+    }
+
+    fn shortcut_on(system: &System, name: &str) -> bool {
+        let system = system.clone();
+        let layout = Layout::new(&system);
+        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+        let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
+        let coords: Vec<ModP> = witness.coords_in().unwrap();
+        let generators = motions::generators::<ModP>(&system, &layout, &coords).unwrap();
+        let mut ctx = crate::rigid::Context::new(
+            &system,
+            &layout,
+            &jacobian,
+            generators,
+            EchelonOptions::default(),
+        );
+        let groups = ctx.constraint_groups(&jacobian);
+        let entities: Vec<EntityIdx> =
+            system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
+        let sub = crate::rigid::Subsystem { entities, groups };
+        let Some(mut fast) = crate::rigid::open_chain(&ctx, &sub) else { return false };
+        fast.sort_by(|a, b| a.entities.cmp(&b.entities));
+        ctx.method = ClusterMethod::Kernel;
+        assert_eq!(fast, crate::rigid::clusters(&ctx, &sub), "{name}");
+        true
+    }
+
+    /// The default analysis, and its clusters as lists of entity ids.
+    fn clusters_by_id(system: &System) -> (Analysis, Vec<Vec<String>>) {
+        let a = analyze(system, &AnalysisOptions::default()).unwrap();
+        let ids = |c: &Cluster| -> Vec<String> {
+            c.entities.iter().map(|e| system.entity(*e).id.clone()).collect()
+        };
+        let clusters = a.clusters.iter().map(ids).collect();
+        (a, clusters)
+    }
+
+    #[test]
+    fn the_open_chain_shortcut_applies_to_open_chains_only() {
+        // Fig. 7: three triangles articulated at p3 and p5; the butterfly: two at p0.
+        assert!(shortcut("paper/chain.ron"));
+        assert!(shortcut("paper/butterfly.ron"));
+        // One rigid block: the whole system.
+        assert!(shortcut("paper/kite.ron"));
+        // A closed non-rigid chain (the four-bar linkage) and absolute constraints (the CAD
+        // rectangle's frame): not an open chain, the general search decides.
+        assert!(!shortcut("sketches/four_bar.ron"));
+        assert!(!shortcut("sketches/rectangle.ron"));
+        let square = gcs_model::generate::framework(
+            "square",
+            gcs_model::Dim::Two,
+            &[vec![0, 0], vec![4, 1], vec![5, 5], vec![1, 4]],
+            &[(0, 1), (1, 2), (2, 3), (3, 0)],
+        );
+        assert!(!shortcut_on(&square, "square"));
+    }
+
+    /// Two rigid bodies sharing the line `l` slide along it; the line `m` of the second body,
+    /// parallel to `l`, does not move in the slide, so it belongs to the first body's cluster
+    /// too. Blocks alone would miss it: the shortcut must stand down (its condition 4).
+    #[test]
+    fn the_open_chain_shortcut_stands_down_for_an_entity_its_hinge_cannot_move() {
+        let text = r#"System(name: "slide", dim: 2,
+            entities: [
+                Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]),
+                Line(id: "l", at: [[0, 0], [1, 0]]), Line(id: "m", at: [[0, 3], [1, 3]]),
+                Point(id: "c", at: [2, 3]), Point(id: "d", at: [7, 3]),
+            ],
+            constraints: [
+                Incident(id: "al", a: "a", b: "l"), Incident(id: "bl", a: "b", b: "l"),
+                Distance(id: "ab", a: "a", b: "b", value: 4),
+                Parallel(id: "lm", a: "l", b: "m"), Distance(id: "dlm", a: "l", b: "m", value: 3),
+                Incident(id: "cm", a: "c", b: "m"), Incident(id: "dm", a: "d", b: "m"),
+                Distance(id: "cd", a: "c", b: "d", value: 5),
+            ])"#;
+        let system = System::from_ron_str(text, None).unwrap();
+        assert!(!shortcut_on(&system, "slide"));
+        let (_, clusters) = clusters_by_id(&system);
+        assert_eq!(clusters, [["a", "b", "l", "m"], ["l", "m", "c", "d"]], "{clusters:?}");
+    }
+
+    /// Two rigid bodies hinged at `h`; the sketch (a witness: the rank is generic) puts `y`,
+    /// a point of the second body, on `h`. Rotating the second body about `h` does not move
+    /// `y`, so at this witness `y` is in the first body's cluster too — which the blocks
+    /// alone would miss. Every block is rigid here: condition 4 is what stands the shortcut
+    /// down.
+    #[test]
+    fn the_open_chain_shortcut_stands_down_for_a_point_on_its_hinge() {
+        let text = r#"System(name: "pinned", dim: 2,
+            entities: [
+                Point(id: "h", at: [0, 0]), Point(id: "a", at: [-3, 4]),
+                Point(id: "b", at: [-3, -4]), Point(id: "c", at: [3, 4]),
+                Point(id: "d", at: [3, -4]), Point(id: "y", at: [0, 0]),
+            ],
+            constraints: [
+                Distance(id: "ha", a: "h", b: "a", value: 5),
+                Distance(id: "hb", a: "h", b: "b", value: 5),
+                Distance(id: "ab", a: "a", b: "b", value: 8),
+                Distance(id: "hc", a: "h", b: "c", value: 5),
+                Distance(id: "hd", a: "h", b: "d", value: 5),
+                Distance(id: "cd", a: "c", b: "d", value: 8),
+                Distance(id: "cy", a: "c", b: "y", value: 5),
+                Distance(id: "dy", a: "d", b: "y", value: 5),
+            ])"#;
+        let system = System::from_ron_str(text, None).unwrap();
+        assert!(!shortcut_on(&system, "pinned"));
+        let (a, clusters) = clusters_by_id(&system);
+        assert_eq!(a.witness.source, WitnessSource::Sketch);
+        assert_eq!(clusters, [["h", "a", "b", "y"], ["h", "c", "d", "y"]], "{clusters:?}");
+    }
+}

@@ -47,6 +47,21 @@ pub enum ClusterMethod {
     Exchange,
     /// The paper's Algorithm 1: a new elimination for each reference, its columns ordered last.
     Eliminate,
+    /// The paper's shortcut for open chains (§4: systems whose cycles all lie in rigid
+    /// subsystems), done with the constraint graph: split it into biconnected blocks at its
+    /// articulation entities; when every block is rigid by itself the clusters are the
+    /// blocks, found by one small elimination per block and none of the whole system. Falls
+    /// back to [`ClusterMethod::Kernel`] where it does not apply (see [`open_chain`]'s docs
+    /// for the conditions, each checked exactly at the witness).
+    OpenChain,
+}
+
+impl ClusterMethod {
+    /// Whether the search answers its questions in the kernel (the default, and the fallback
+    /// of the open-chain shortcut).
+    fn uses_kernel(self) -> bool {
+        matches!(self, ClusterMethod::Kernel | ClusterMethod::OpenChain)
+    }
 }
 
 /// What a group of rows stands for.
@@ -121,6 +136,19 @@ impl<'a, F: Field> Context<'a, F> {
 
     fn k(&self) -> usize {
         self.generators.len()
+    }
+
+    /// The row of the displacement generators at model column `c`: the velocities of `c`
+    /// under the `k` generators, as a sparse vector over them.
+    pub(crate) fn t_row(&self, c: usize) -> SparseRow<F> {
+        SparseRow::from_entries(
+            self.generators
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| !t[c].is_zero())
+                .map(|(j, t)| (j, t[c].clone()))
+                .collect(),
+        )
     }
 }
 
@@ -290,15 +318,7 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             let inv = self.frame_scale.inv().unwrap_or_else(F::one);
             return SparseRow::from_entries(vec![(c - self.ncols, inv)]);
         }
-        SparseRow::from_entries(
-            self.ctx
-                .generators
-                .iter()
-                .enumerate()
-                .filter(|(_, t)| !t[c].is_zero())
-                .map(|(j, t)| (j, t[c].clone()))
-                .collect(),
-        )
+        self.ctx.t_row(c)
     }
 
     /// A reference of a set: columns whose displacement rows are independent, as many as the
@@ -434,7 +454,7 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
 
     /// Whether a set of objects is rigid.
     fn rigid(&mut self, set: &[Obj]) -> bool {
-        if self.ctx.method == ClusterMethod::Kernel {
+        if self.ctx.method.uses_kernel() {
             return self.kernel_rigid(set).0;
         }
         let r = self.reference(set);
@@ -453,7 +473,7 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
             (0..self.cols.len()).filter(|o| self.component[*o] == comp).collect();
         let mut set = seed;
         loop {
-            let (mut closure, d) = if self.ctx.method == ClusterMethod::Kernel {
+            let (mut closure, d) = if self.ctx.method.uses_kernel() {
                 let (_, d) = self.kernel_rigid(&set);
                 if d == k {
                     (self.kernel_closure_full(&set, &members), d)
@@ -584,7 +604,258 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
 
 /// The maximal rigid subsystems of a subsystem, sorted by first entity (file order).
 pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Vec<RawCluster> {
+    if ctx.method == ClusterMethod::OpenChain
+        && let Some(mut out) = open_chain(ctx, sub)
+    {
+        out.sort_by(|a, b| a.entities.cmp(&b.entities));
+        return out;
+    }
     let mut out = Search::new(ctx, sub).run();
     out.sort_by(|a, b| a.entities.cmp(&b.entities));
     out
+}
+
+/// The open-chain shortcut (witness paper §4, after Algorithm 2), or `None` where it does not
+/// apply.
+///
+/// The entity graph (two entities adjacent when a group binds both) is split into biconnected
+/// blocks; an *articulation* is an entity in several blocks. The clusters are the blocks when:
+///
+/// 1. no group is absolute (no frame) and no group binds an articulation alone;
+/// 2. every articulation `h` is a point, line or plane in the sense that its degree of
+///    rigidity equals its DOF (`rank T|h = DOF(h)`): every velocity of `h` is then that of a
+///    displacement;
+/// 3. every block `B` of two or more entities is rigid by itself with full degree of
+///    rigidity: `rank T|B = k` and its rows (its groups and its entities' internal rows) have
+///    rank `cols(B) − k`;
+/// 4. no entity `y ≠ h` of the component is left fixed by the whole stabiliser of an
+///    articulation `h` (the displacements that do not move `h`).
+///
+/// Why: by 2, a motion of a block alone extends to the whole system (each part hanging from
+/// the block at an articulation `h` follows the displacement that moves `h` as the block
+/// does), so by 3 each block is rigid in the whole. It is maximal: a rigid set `M ⊋ B` holds
+/// some `y` beyond an articulation `h` of `B`; a stabiliser motion `g` of `h` applied to the
+/// side of `h` away from `B` keeps every constraint, so on `M` it is a displacement `τ` with
+/// `τ = 0` on `B` (full degree of rigidity: `τ = 0`) and `τ = g` on `y`: `g` fixes `y`,
+/// which 4 excludes. Entities in no block (bound by no group, or by unary groups only) are
+/// clusters of their own, as in the general search.
+///
+/// Exact fields only (with floats, the kernel method decides). Cost: a linear block
+/// decomposition, one elimination per block, and for each articulation
+/// a check of the entities of its component against its stabiliser — no elimination of the
+/// whole system.
+pub(crate) fn open_chain<F: Field>(
+    ctx: &Context<'_, F>,
+    sub: &Subsystem<F>,
+) -> Option<Vec<RawCluster>> {
+    // Condition 4 asks for exact zeros: not with floats.
+    if ctx.options.tolerance.is_some() || sub.groups.iter().any(|g| g.absolute) {
+        return None;
+    }
+    let n = sub.entities.len();
+    let pos: HashMap<EntityIdx, usize> =
+        sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
+    let members: Vec<Vec<usize>> = sub
+        .groups
+        .iter()
+        .map(|g| {
+            let mut m: Vec<usize> = g.entities.iter().filter_map(|e| pos.get(e).copied()).collect();
+            m.sort_unstable();
+            m.dedup();
+            m
+        })
+        .collect();
+    let mut adj: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for m in &members {
+        for (i, &a) in m.iter().enumerate() {
+            for &b in &m[i + 1..] {
+                adj[a].push(b);
+                adj[b].push(a);
+            }
+        }
+    }
+    for a in &mut adj {
+        a.sort_unstable();
+        a.dedup();
+    }
+    let (blocks, component) = biconnected_blocks(&adj);
+    let mut blocks_of: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (b, block) in blocks.iter().enumerate() {
+        for &v in block {
+            blocks_of[v].push(b);
+        }
+    }
+    // Groups of each block (condition 1 for unary groups on articulations).
+    let mut groups_of: Vec<Vec<usize>> = vec![Vec::new(); blocks.len()];
+    let mut single: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (g, m) in members.iter().enumerate() {
+        let Some(&first) = m.first() else { continue };
+        if m.len() == 1 {
+            if blocks_of[first].len() > 1 {
+                return None;
+            }
+            match blocks_of[first].first() {
+                Some(&b) => groups_of[b].push(g),
+                None => single[first].push(g),
+            }
+            continue;
+        }
+        let b = blocks_of[first]
+            .iter()
+            .copied()
+            .find(|b| m.iter().all(|v| blocks_of[*v].contains(b)))?;
+        groups_of[b].push(g);
+    }
+    let k = ctx.k();
+    let cols: Vec<Vec<usize>> =
+        sub.entities.iter().map(|e| ctx.layout.columns(*e).collect()).collect();
+    let displacements = |set: &[usize]| -> Echelon<F> {
+        let mut e = Echelon::new(k, ctx.options.clone());
+        for &v in set {
+            for &c in &cols[v] {
+                e.insert(ctx.t_row(c));
+            }
+        }
+        e
+    };
+    // Condition 2, and the stabilisers for condition 4.
+    let mut stabilisers: Vec<(usize, Vec<SparseRow<F>>)> = Vec::new();
+    for v in 0..n {
+        if blocks_of[v].len() < 2 {
+            continue;
+        }
+        let e = displacements(&[v]);
+        let internal = ctx.internal.get(&sub.entities[v]).map_or(0, Vec::len);
+        if e.rank() + internal != cols[v].len() {
+            return None;
+        }
+        stabilisers.push((v, e.kernel_basis()));
+    }
+    // Condition 3.
+    for (b, block) in blocks.iter().enumerate() {
+        if displacements(block).rank() != k {
+            return None;
+        }
+        let local: HashMap<usize, usize> = block
+            .iter()
+            .flat_map(|v| cols[*v].iter().copied())
+            .enumerate()
+            .map(|(i, c)| (c, i))
+            .collect();
+        let mut e = Echelon::new(local.len(), ctx.options.clone());
+        let renumber = |r: &SparseRow<F>| -> Option<SparseRow<F>> {
+            let entries: Option<Vec<(usize, F)>> =
+                r.entries().iter().map(|(c, x)| local.get(c).map(|i| (*i, x.clone()))).collect();
+            entries.map(SparseRow::from_entries)
+        };
+        for v in block {
+            for r in ctx.internal.get(&sub.entities[*v]).into_iter().flatten() {
+                e.insert(renumber(r)?);
+            }
+        }
+        for g in &groups_of[b] {
+            for r in &sub.groups[*g].rows {
+                e.insert(renumber(r)?);
+            }
+        }
+        if e.rank() + k != local.len() {
+            return None;
+        }
+    }
+    // Condition 4: the velocity of each column of `y` under each stabiliser generator `s`,
+    // `Σ_j T_j[c]·s_j`, computed in place (this loop visits every entity once per
+    // articulation).
+    for (h, stab) in &stabilisers {
+        for y in (0..n).filter(|y| y != h && component[*y] == component[*h]) {
+            let fixed = cols[y].iter().all(|&c| {
+                stab.iter().all(|s| {
+                    let mut v = F::zero();
+                    for (j, x) in s.entries() {
+                        v = v.add(&ctx.generators[*j][c].mul(x));
+                    }
+                    v.is_zero()
+                })
+            });
+            if fixed {
+                return None;
+            }
+        }
+    }
+    let mut out: Vec<RawCluster> = blocks
+        .into_iter()
+        .zip(groups_of)
+        .map(|(block, groups)| {
+            let mut entities: Vec<EntityIdx> = block.iter().map(|v| sub.entities[*v]).collect();
+            entities.sort_unstable();
+            RawCluster { entities, groups, grounded: false }
+        })
+        .collect();
+    for v in 0..n {
+        if blocks_of[v].is_empty() {
+            let groups = std::mem::take(&mut single[v]);
+            out.push(RawCluster { entities: vec![sub.entities[v]], groups, grounded: false });
+        }
+    }
+    Some(out)
+}
+
+/// The biconnected blocks of an undirected graph (adjacency lists without duplicates; isolated
+/// vertices are in no block), and the connected component of each vertex. Iterative
+/// Hopcroft–Tarjan with an edge stack.
+fn biconnected_blocks(adj: &[Vec<usize>]) -> (Vec<Vec<usize>>, Vec<usize>) {
+    const UNSEEN: usize = usize::MAX;
+    let n = adj.len();
+    let mut order = vec![UNSEEN; n];
+    let mut low = vec![0; n];
+    let mut component = vec![UNSEEN; n];
+    let mut blocks: Vec<Vec<usize>> = Vec::new();
+    let mut edges: Vec<(usize, usize)> = Vec::new();
+    let mut time = 0;
+    for root in 0..n {
+        if order[root] != UNSEEN {
+            continue;
+        }
+        order[root] = time;
+        low[root] = time;
+        time += 1;
+        component[root] = root;
+        // (vertex, parent, next neighbour index)
+        let mut stack: Vec<(usize, usize, usize)> = vec![(root, UNSEEN, 0)];
+        while let Some(&mut (v, parent, ref mut next)) = stack.last_mut() {
+            if *next < adj[v].len() {
+                let w = adj[v][*next];
+                *next += 1;
+                if order[w] == UNSEEN {
+                    order[w] = time;
+                    low[w] = time;
+                    time += 1;
+                    component[w] = root;
+                    edges.push((v, w));
+                    stack.push((w, v, 0));
+                } else if w != parent && order[w] < order[v] {
+                    edges.push((v, w));
+                    low[v] = low[v].min(order[w]);
+                }
+                continue;
+            }
+            stack.pop();
+            let Some(&(u, _, _)) = stack.last() else { continue };
+            low[u] = low[u].min(low[v]);
+            if low[v] >= order[u] {
+                // `u` separates the block of the edge (u, v): pop it.
+                let mut block: Vec<usize> = Vec::new();
+                while let Some((a, b)) = edges.pop() {
+                    block.push(a);
+                    block.push(b);
+                    if (a, b) == (u, v) {
+                        break;
+                    }
+                }
+                block.sort_unstable();
+                block.dedup();
+                blocks.push(block);
+            }
+        }
+    }
+    (blocks, component)
 }

@@ -30,7 +30,7 @@ use std::collections::HashMap;
 
 use gcs_jacobian::relation_row;
 use gcs_model::{ConstraintIdx, ConstraintKind, Dim, EntityIdx, EntityKind, Shape, System};
-use gcs_rank::{Echelon, Field, SparseRow};
+use gcs_rank::{Echelon, Field};
 
 use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
 
@@ -425,14 +425,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let k = ctx.generators.len();
         let mut t = Echelon::new(k, ctx.options.clone());
         for &c in &cols {
-            t.insert(SparseRow::from_entries(
-                ctx.generators
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, g)| !g[c].is_zero())
-                    .map(|(j, g)| (j, g[c].clone()))
-                    .collect(),
-            ));
+            t.insert(ctx.t_row(c));
         }
         let dof: usize = boundary.iter().map(|e| system.entity_dof(*e)).sum();
         let target = dof.saturating_sub(t.rank());

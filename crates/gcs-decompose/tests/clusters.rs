@@ -227,7 +227,9 @@ fn methods_agree_on_every_model() {
             let name = format!("{sub}/{}", path.file_name().unwrap().to_string_lossy());
             let s = model(&name);
             let base = run(&s, false).clusters;
-            for method in [ClusterMethod::Exchange, ClusterMethod::Eliminate] {
+            for method in
+                [ClusterMethod::Exchange, ClusterMethod::Eliminate, ClusterMethod::OpenChain]
+            {
                 for backend in [Backend::Exact, Backend::ModP, Backend::Rational] {
                     let o = AnalysisOptions {
                         cluster_method: method,
@@ -324,6 +326,51 @@ proptest! {
         let a = run(&s, false);
         let mut ours: Vec<BTreeSet<usize>> = a
             .clusters
+            .iter()
+            .map(|c| c.entities.iter().map(|e| e.index()).collect())
+            .collect();
+        ours.sort();
+        prop_assert_eq!(ours, rigid_components(n, &edges));
+    }
+
+    /// Trees of rigid bodies (small Laman frameworks, each hinged at one point of an earlier
+    /// one), sometimes with a bar closing a cycle through several bodies or a bar removed:
+    /// the open-chain shortcut, where it applies, and the general search give the same
+    /// clusters, and both equal the rigid components of the count.
+    #[test]
+    fn the_open_chain_shortcut_agrees_with_the_search(seed in 0u64..10_000, bodies in 1usize..=4, close in 0usize..3, remove in 0usize..3) {
+        let mut rng = SplitMix64::new(seed);
+        let mut edges: Vec<(usize, usize)> = Vec::new();
+        let mut n = 0;
+        for b in 0..bodies {
+            let size = 2 + rng.below(2) as usize;
+            let local = laman_edges(size + 1, 0.5, &mut rng);
+            // Local vertex 0 is the hinge: a point of an earlier body (or new for the first).
+            let hinge = if b == 0 { n } else { rng.below(n as u64) as usize };
+            let first_new = if b == 0 { n } else { n - 1 };
+            let map = |v: usize| if v == 0 { hinge } else { first_new + v };
+            edges.extend(local.iter().map(|&(x, y)| (map(x), map(y))));
+            n = first_new + size + 1;
+        }
+        if close == 0 && n > 3 {
+            let (a, b) = (rng.below(n as u64) as usize, rng.below(n as u64) as usize);
+            if a != b && !edges.contains(&(a, b)) && !edges.contains(&(b, a)) {
+                edges.push((a, b));
+            }
+        }
+        if remove == 0 && edges.len() > 1 {
+            let i = rng.below(edges.len() as u64) as usize;
+            edges.remove(i);
+        }
+        let coords = random_coords(n, Dim::Two, 1000, &mut rng);
+        let s = framework("tree", Dim::Two, &coords, &edges);
+        let with = |method: ClusterMethod| {
+            let o = AnalysisOptions { cluster_method: method, ..AnalysisOptions::default() };
+            analyze(&s, &o).unwrap().clusters
+        };
+        let shortcut = with(ClusterMethod::OpenChain);
+        prop_assert_eq!(&shortcut, &with(ClusterMethod::Kernel));
+        let mut ours: Vec<BTreeSet<usize>> = shortcut
             .iter()
             .map(|c| c.entities.iter().map(|e| e.index()).collect())
             .collect();
