@@ -39,4 +39,11 @@ fn float_analyses_at_the_projection_and_says_so() {
     assert!(a.well_constrained());
     assert_eq!((a.rank, a.trivial_motions), (8, 0));
     assert_eq!(a.float_qr_rank, Some(8));
+    // The projection put `p` on both circles, at (1.5, ±√1.75), to the float precision.
+    let layout = gcs_jacobian::Layout::new(&s);
+    let p = s.entity_indices().find(|e| s.entity(*e).id == "p").unwrap();
+    let coords: Vec<f64> = a.witness.coords_in().unwrap();
+    let at: Vec<f64> = layout.columns(p).map(|c| coords[c]).collect();
+    approx::assert_abs_diff_eq!(at[0], 1.5, epsilon = 1e-9);
+    approx::assert_abs_diff_eq!(at[1].abs(), 1.75f64.sqrt(), epsilon = 1e-9);
 }

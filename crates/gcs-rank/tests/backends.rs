@@ -56,7 +56,7 @@ fn float_agrees(case: &str, reference: &RowAnalysis<BigRational>, float: &RowAna
         for id in exact.iter().map(|(j, _)| *j).chain(approx.iter().map(|(j, _)| *j)) {
             let (e, f) = (exact_at(id), approx_at(id));
             assert!(
-                (e - f).abs() <= 1e-6 * (1.0 + e.abs()),
+                approx::relative_eq!(e, f, epsilon = 1e-6, max_relative = 1e-6),
                 "{case}/float: row {i}, coefficient of row {id}: {f} vs exact {e}"
             );
         }
