@@ -8,7 +8,7 @@ use gcs_jacobian::{
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{
     BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Proof, Rat, RowAnalysis,
-    SparseRow, analyse_rows, analyse_rows_exact, float_rank_qr,
+    SparseRow, analyse_rows, analyse_rows_exact, echelon_rank, float_rank_qr,
 };
 
 use crate::error::AnalysisError;
@@ -312,13 +312,29 @@ fn generic<F: Field>(
     let options_tolerance = options.tolerance;
     let n = jacobian.rows.len();
     let internal = jacobian.internal_count();
-    // Tracking combinations costs far more than the elimination (they fill in): run untracked
-    // first and track only when some row turns out dependent.
-    let untracked = EchelonOptions { track_combinations: false, ..options.clone() };
-    let mut analysis = analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), untracked);
-    if analysis.outcomes.iter().any(|o| !o.is_independent()) {
-        analysis = analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), options);
-    }
+    // Tracking combinations costs far more than the elimination (they fill in): find the rank
+    // first and track only when some row turns out dependent. Exact fields find it in plain
+    // row echelon form (no back-substitution); floats in the reduced form with the tolerance.
+    let quick = if options_tolerance.is_none() {
+        let (rank, pivots) = echelon_rank(jacobian.ncols, jacobian.rows.iter().cloned());
+        let outcomes = pivots
+            .into_iter()
+            .map(|p| {
+                p.map_or(Insertion::Dependent { combination: None }, |pivot| {
+                    Insertion::Independent { pivot }
+                })
+            })
+            .collect();
+        RowAnalysis { rank, outcomes }
+    } else {
+        let untracked = EchelonOptions { track_combinations: false, ..options.clone() };
+        analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), untracked)
+    };
+    let analysis = if quick.outcomes.iter().all(Insertion::is_independent) {
+        quick
+    } else {
+        analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), options)
+    };
     Ok((
         Outcome {
             rank: analysis.rank,

@@ -16,7 +16,7 @@
 
 use gcs_model::rng::SplitMix64;
 use gcs_model::{EntityIdx, System};
-use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, ModP, Rat};
+use gcs_rank::{BigRational, EchelonOptions, Field, ModP, Rat};
 
 use crate::error::JacobianError;
 use crate::jacobian::{Jacobian, assemble};
@@ -134,11 +134,7 @@ fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan) -> u
     };
     let sketch = |e: EntityIdx| crate::sketch::sketch_coords_in::<ModP>(system, e);
     let j = assemble(system, layout, plan, &x, &sketch);
-    let mut e = Echelon::new(j.ncols, EchelonOptions::default());
-    for r in j.rows {
-        e.insert(r);
-    }
-    e.rank()
+    gcs_rank::echelon_rank(j.ncols, j.rows).0
 }
 
 /// Finds a witness of `system` (see the module documentation).

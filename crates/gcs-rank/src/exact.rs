@@ -311,15 +311,14 @@ fn certified(
         for row in rows {
             images.push(row.map(ModP::from_rational).ok()?);
         }
-        let quick: RowAnalysis<ModP> = analyse_rows(ncols, images, EchelonOptions::default());
-        if quick.outcomes.iter().all(Insertion::is_independent) {
-            let outcomes = quick
-                .outcomes
-                .iter()
-                .map(|o| Insertion::Independent { pivot: o.pivot().unwrap_or(0) })
+        let (rank, pivots) = crate::echelon_rank(ncols, images);
+        if rank == rows.len() {
+            let outcomes = pivots
+                .into_iter()
+                .map(|p| Insertion::Independent { pivot: p.unwrap_or(0) })
                 .collect();
             return Some((
-                RowAnalysis { rank: quick.rank, outcomes },
+                RowAnalysis { rank, outcomes },
                 Proof::ModularCertified { prime: ModP::PRIME },
             ));
         }

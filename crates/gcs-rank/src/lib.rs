@@ -97,6 +97,7 @@ mod exact;
 mod field;
 mod float;
 mod modp;
+mod rank;
 mod rat;
 #[cfg(feature = "rug")]
 mod rug_field;
@@ -111,6 +112,7 @@ pub use field::Field;
 pub use float::float_rank_qr;
 pub use modp::{ModP, ModPrime};
 pub use num_rational::BigRational;
+pub use rank::echelon_rank;
 pub use rat::Rat;
 #[cfg(feature = "rug")]
 pub use rug_field::{big_to_rug, rug_to_big};
