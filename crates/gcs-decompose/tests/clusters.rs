@@ -227,8 +227,7 @@ fn methods_agree_on_every_model() {
             let name = format!("{sub}/{}", path.file_name().unwrap().to_string_lossy());
             let s = model(&name);
             let base = run(&s, false).clusters;
-            for method in
-                [ClusterMethod::Exchange, ClusterMethod::Eliminate, ClusterMethod::OpenChain]
+            for method in [ClusterMethod::Kernel, ClusterMethod::Exchange, ClusterMethod::Eliminate]
             {
                 for backend in [Backend::Exact, Backend::ModP, Backend::Rational] {
                     let o = AnalysisOptions {
