@@ -760,9 +760,13 @@ pub(crate) fn open_chain<F: Field>(
                 rows.push(renumber(r)?);
             }
         }
-        // Exact field (checked on entry): the plain echelon rank is enough and cheap, so a
-        // large block that is not rigid costs little before the kernel method takes over.
-        if gcs_rank::echelon_rank(local.len(), rows).0 + k != local.len() {
+        // Fewer rows than the rank needs (a removal trial of the W-decomposition): not rigid,
+        // no elimination. Otherwise, exact field (checked on entry): the plain echelon rank is
+        // enough and cheap, so a large block that is not rigid costs little before the kernel
+        // method takes over.
+        if rows.len() + k < local.len()
+            || gcs_rank::echelon_rank(local.len(), rows).0 + k != local.len()
+        {
             return None;
         }
     }
