@@ -731,7 +731,8 @@ mod tests {
 
     /// Two rigid bodies sharing the line `l` slide along it; the line `m` of the second body,
     /// parallel to `l`, does not move in the slide, so it belongs to the first body's cluster
-    /// too. Blocks alone would miss it: the shortcut must stand down (its condition 4).
+    /// too. Blocks alone would miss it: the shortcut must stand down (here by its condition 2:
+    /// the group of the parallel lines has a low degree of rigidity).
     #[test]
     fn the_open_chain_shortcut_stands_down_for_an_entity_its_hinge_cannot_move() {
         let text = r#"System(name: "slide", dim: 2,
@@ -756,7 +757,7 @@ mod tests {
     /// Two rigid bodies hinged at `h`; the sketch (a witness: the rank is generic) puts `y`,
     /// a point of the second body, on `h`. Rotating the second body about `h` does not move
     /// `y`, so at this witness `y` is in the first body's cluster too — which the blocks
-    /// alone would miss. Every block is rigid here: condition 4 is what stands the shortcut
+    /// alone would miss. Every block is rigid here: condition 5 is what stands the shortcut
     /// down.
     #[test]
     fn the_open_chain_shortcut_stands_down_for_a_point_on_its_hinge() {

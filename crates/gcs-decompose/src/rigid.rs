@@ -623,35 +623,42 @@ pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Ve
 /// The entity graph (two entities adjacent when a group binds both) is split into biconnected
 /// blocks; an *articulation* is an entity in several blocks. The clusters are the blocks when:
 ///
-/// 1. no group is absolute (no frame) and no group binds an articulation alone;
-/// 2. every articulation `h` is a point, line or plane in the sense that its degree of
+/// 1. no group is absolute (no frame);
+/// 2. the entities of every group have full degree of rigidity (`rank T = k` on them: in 2D
+///    two distinct points, a point and a line; not a single entity, parallel lines, coincident
+///    points, nor a bar in 3D);
+/// 3. every articulation `h` is a point, line or plane in the sense that its degree of
 ///    rigidity equals its DOF (`rank T|h = DOF(h)`): every velocity of `h` is then that of a
 ///    displacement;
-/// 3. every block `B` of two or more entities is rigid by itself with full degree of
+/// 4. every block `B` of two or more entities is rigid by itself with full degree of
 ///    rigidity: `rank T|B = k` and its rows (its groups and its entities' internal rows) have
 ///    rank `cols(B) − k`;
-/// 4. no entity `y ≠ h` of the component is left fixed by the whole stabiliser of an
+/// 5. no entity `y ≠ h` of the component is left fixed by the whole stabiliser of an
 ///    articulation `h` (the displacements that do not move `h`).
 ///
-/// Why: by 2, a motion of a block alone extends to the whole system (each part hanging from
+/// Why: by 3, a motion of a block alone extends to the whole system (each part hanging from
 /// the block at an articulation `h` follows the displacement that moves `h` as the block
-/// does), so by 3 each block is rigid in the whole. It is maximal: a rigid set `M ⊋ B` holds
-/// some `y` beyond an articulation `h` of `B`; a stabiliser motion `g` of `h` applied to the
-/// side of `h` away from `B` keeps every constraint, so on `M` it is a displacement `τ` with
-/// `τ = 0` on `B` (full degree of rigidity: `τ = 0`) and `τ = g` on `y`: `g` fixes `y`,
-/// which 4 excludes. Entities in no block (bound by no group, or by unary groups only) are
-/// clusters of their own, as in the general search.
+/// does), so by 4 each block is rigid in the whole. The general search grows a cluster from
+/// each group whose entities are not yet in one cluster; such a seed lies in a block `B`, so
+/// it is rigid, and by 2 its degree of rigidity is full: its cluster is every entity it holds
+/// (whose velocity vanishes whenever the seed's does). That is all of `B`, which is rigid and
+/// contains it, and nothing beyond an articulation `h` of `B`: applying any `g` of the
+/// stabiliser of `h` to the side of `h` away from `B` keeps every constraint and fixes the
+/// seed, and by 5 each entity there is moved by some `g`. So the clusters are the blocks, and
+/// entities in no block (bound by no group) are clusters of their own. Without 2, the search
+/// grows low-rigidity seeds entity by entity, and at special positions such growth can reach
+/// across an articulation whose stabiliser each side pins only in part (a 3D line hinge: a
+/// point on it stops the turn about it, a plane through it the slide along it).
 ///
 /// Exact fields only (with floats, the kernel method decides). Cost: a linear block
-/// decomposition, one elimination per block, and for each articulation
-/// a check of the entities of its component against its stabiliser — no elimination of the
-/// whole system.
+/// decomposition, one plain echelon rank per block, and for each articulation a check of the
+/// entities of its component against its stabiliser — no elimination of the whole system.
 pub(crate) fn open_chain<F: Field>(
     ctx: &Context<'_, F>,
     sub: &Subsystem<F>,
 ) -> Option<Vec<RawCluster>> {
-    // Condition 4 asks for exact zeros: not with floats.
-    if ctx.options.tolerance.is_some() || sub.groups.iter().any(|g| g.absolute) {
+    // Condition 5 asks for exact zeros: not with floats.
+    if !F::EXACT || ctx.options.tolerance.is_some() || sub.groups.iter().any(|g| g.absolute) {
         return None;
     }
     let n = sub.entities.len();
@@ -687,7 +694,7 @@ pub(crate) fn open_chain<F: Field>(
             blocks_of[v].push(b);
         }
     }
-    // Groups of each block (condition 1 for unary groups on articulations).
+    // Groups of each block (a unary group on an articulation belongs to no single block).
     let mut groups_of: Vec<Vec<usize>> = vec![Vec::new(); blocks.len()];
     let mut single: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (g, m) in members.iter().enumerate() {
@@ -720,7 +727,11 @@ pub(crate) fn open_chain<F: Field>(
         }
         e
     };
-    // Condition 2, and the stabilisers for condition 4.
+    // Condition 2.
+    if members.iter().any(|m| !m.is_empty() && displacements(m).rank() != k) {
+        return None;
+    }
+    // Condition 3, and the stabilisers for condition 5.
     let mut stabilisers: Vec<(usize, Vec<SparseRow<F>>)> = Vec::new();
     for v in 0..n {
         if blocks_of[v].len() < 2 {
@@ -733,7 +744,7 @@ pub(crate) fn open_chain<F: Field>(
         }
         stabilisers.push((v, e.kernel_basis()));
     }
-    // Condition 3.
+    // Condition 4.
     for (b, block) in blocks.iter().enumerate() {
         if displacements(block).rank() != k {
             return None;
@@ -770,7 +781,7 @@ pub(crate) fn open_chain<F: Field>(
             return None;
         }
     }
-    // Condition 4: the velocity of each column of `y` under each stabiliser generator `s`,
+    // Condition 5: the velocity of each column of `y` under each stabiliser generator `s`,
     // `Σ_j T_j[c]·s_j`, computed in place (this loop visits every entity once per
     // articulation).
     for (h, stab) in &stabilisers {

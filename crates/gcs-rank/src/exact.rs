@@ -311,6 +311,8 @@ fn certified(
         for row in rows {
             images.push(row.map(ModP::from_rational).ok()?);
         }
+        // `echelon_rank` ignores entries at or beyond `ncols`: such rows can only lower the
+        // rank found here, and then the full analysis below (which extends the matrix) runs.
         let (rank, pivots) = crate::echelon_rank(ncols, images);
         if rank == rows.len() {
             let outcomes = pivots
