@@ -694,20 +694,13 @@ pub(crate) fn open_chain<F: Field>(
             blocks_of[v].push(b);
         }
     }
-    // Groups of each block (a unary group on an articulation belongs to no single block).
+    // Groups of each block. A group of one entity fails condition 2 (a single entity never
+    // has full degree of rigidity), so every group here binds two or more, all in one block.
     let mut groups_of: Vec<Vec<usize>> = vec![Vec::new(); blocks.len()];
-    let mut single: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (g, m) in members.iter().enumerate() {
         let Some(&first) = m.first() else { continue };
         if m.len() == 1 {
-            if blocks_of[first].len() > 1 {
-                return None;
-            }
-            match blocks_of[first].first() {
-                Some(&b) => groups_of[b].push(g),
-                None => single[first].push(g),
-            }
-            continue;
+            return None;
         }
         let b = blocks_of[first]
             .iter()
@@ -809,10 +802,13 @@ pub(crate) fn open_chain<F: Field>(
             RawCluster { entities, groups, grounded: false }
         })
         .collect();
-    for v in 0..n {
-        if blocks_of[v].is_empty() {
-            let groups = std::mem::take(&mut single[v]);
-            out.push(RawCluster { entities: vec![sub.entities[v]], groups, grounded: false });
+    for (v, of) in blocks_of.iter().enumerate() {
+        if of.is_empty() {
+            out.push(RawCluster {
+                entities: vec![sub.entities[v]],
+                groups: Vec::new(),
+                grounded: false,
+            });
         }
     }
     Some(out)
