@@ -5,6 +5,9 @@
 //!
 //! - `rectangles`: grids of fixed CAD rectangles (`generate::rectangles`), 100, 1000, 10000;
 //! - `laman`: random 2D Laman frameworks (`generate::laman`), 50, 200, 800 points;
+//! - `laman_sketch`: the same as a CAD program writes them (`generate::laman_sketch`): 10-digit
+//!   decimal coordinates and one redundant distance whose circuit spans most of the framework,
+//!   100, 300, 1000 points (issue 10: exact within 2× of modp);
 //! - `sphere`: random 3D triangulated spheres (`generate::triangulated_sphere`), 50, 200;
 //! - `parse`: `System::from_ron_str` on the 10,000-rectangle model, on its own.
 //!
@@ -21,13 +24,17 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, SamplingMode};
 use gcs_decompose::{AnalysisOptions, Backend, analyze};
 use gcs_model::System;
-use gcs_model::generate::{laman, rectangles, triangulated_sphere};
+use gcs_model::generate::{laman, laman_sketch, rectangles, triangulated_sphere};
 
 const SEED: u64 = 2024;
 
 /// The families and their sizes.
-const FAMILIES: [(&str, &[usize]); 3] =
-    [("rectangles", &[100, 1000, 10_000]), ("laman", &[50, 200, 800]), ("sphere", &[50, 200])];
+const FAMILIES: [(&str, &[usize]); 4] = [
+    ("rectangles", &[100, 1000, 10_000]),
+    ("laman", &[50, 200, 800]),
+    ("laman_sketch", &[100, 300, 1000]),
+    ("sphere", &[50, 200]),
+];
 
 /// Whether the criterion run measures a case. The cases left out take from several seconds
 /// to minutes for one analysis, which a run of a few minutes cannot afford ten times; their
@@ -36,6 +43,8 @@ fn measured(family: &str, backend: Backend, n: usize) -> bool {
     match (family, backend.name()) {
         // Rational elimination with tracked combinations grows like the dense inverse.
         ("laman", "rational" | "rug") => n <= 50,
+        // Rational elimination at 10-digit coordinates: minutes from 50 points on.
+        ("laman_sketch", "rational" | "rug") => false,
         ("sphere", "rational") => false,
         ("sphere", "rug") => n <= 50,
         _ => true,
@@ -55,6 +64,7 @@ fn system(family: &str, n: usize) -> System {
     match family {
         "rectangles" => rectangles(n),
         "laman" => laman(n, SEED),
+        "laman_sketch" => laman_sketch(n, SEED),
         "sphere" => triangulated_sphere(n, SEED),
         _ => unreachable!("unknown family {family}"),
     }
@@ -103,6 +113,10 @@ fn probe() {
     println!("| family | size | backend | one analysis |\n|---|---|---|---|");
     for (family, sizes) in FAMILIES {
         for backend in backends() {
+            // Rational elimination at decimal coordinates: minutes at the smallest size.
+            if family == "laman_sketch" && matches!(backend, Backend::Rational | Backend::Rug) {
+                continue;
+            }
             for &n in sizes {
                 let s = system(family, n);
                 let options = AnalysisOptions { backend, ..AnalysisOptions::default() };

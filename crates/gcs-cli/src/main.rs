@@ -90,7 +90,9 @@ enum Command {
     /// Print a generated model of a family of growing size (the benchmark families) as RON.
     Generate {
         /// The family: `rectangles` (N fixed CAD rectangles), `laman` (a random rigid 2D bar
-        /// framework on N points), `sphere` (a random triangulated sphere on N points, 3D).
+        /// framework on N points), `laman-sketch` (the same as a CAD program writes it:
+        /// 10-digit decimal coordinates, one redundant distance), `sphere` (a random
+        /// triangulated sphere on N points, 3D).
         #[arg(value_enum)]
         family: Family,
         /// The size.
@@ -108,6 +110,8 @@ enum Family {
     Rectangles,
     /// A random 2D Laman graph (Henneberg moves) as a bar framework.
     Laman,
+    /// A random Laman framework with 10-digit decimal coordinates and one redundant distance.
+    LamanSketch,
     /// A random triangulated sphere as a 3D bar framework.
     Sphere,
 }
@@ -177,6 +181,7 @@ fn main() -> ExitCode {
             let system = match family {
                 Family::Rectangles => gcs_model::generate::rectangles(size),
                 Family::Laman => gcs_model::generate::laman(size, seed),
+                Family::LamanSketch => gcs_model::generate::laman_sketch(size, seed),
                 Family::Sphere => gcs_model::generate::triangulated_sphere(size, seed),
             };
             let mut out = batch::Out::new();

@@ -7,8 +7,9 @@ use gcs_jacobian::{
 };
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{
-    BigRational, Echelon, EchelonOptions, Field, Insertion, ModP, Proof, Rat, RowAnalysis,
-    SparseRow, analyse_rows, analyse_rows_exact, echelon_rank, float_rank_qr,
+    BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP, Proof, Rat,
+    RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact, certify_rows, echelon_rank,
+    float_rank_qr,
 };
 
 use crate::error::AnalysisError;
@@ -362,23 +363,25 @@ pub fn analyze_at(
     let (outcome, equations, internal) = match options.backend {
         Backend::Exact => {
             let jacobian: Jacobian<BigRational> = witness.jacobian(system, layout)?;
-            // Untracked first (fast); with combinations only when a row is dependent.
-            let (mut analysis, mut proof) =
-                analyse_rows_exact(jacobian.ncols, &jacobian.rows, false)?;
-            if analysis.outcomes.iter().any(|o| !o.is_independent()) {
-                (analysis, proof) = analyse_rows_exact(jacobian.ncols, &jacobian.rows, true)?;
-            }
-            // Trivial motions, exactly: T and J·T have at most six columns.
             let generators = motions::generators::<BigRational>(system, layout, &witness.coords)?;
+            // The displacements prove the dependencies of rigid circuits without lifting their
+            // coefficients (thousands of digits at a sketch with decimal coordinates).
+            let hint = KernelHint {
+                vectors: generators.clone(),
+                groups: (0..layout.ncols()).map(|c| layout.owner(c).index()).collect(),
+                free_rows: jacobian.internal_count(),
+            };
+            let certified = certify_rows(jacobian.ncols, &jacobian.rows, Some(&hint))?;
+            // Trivial motions, exactly: T and J·T have at most six columns.
             let trivial = exact_trivial_motions(&jacobian, &generators)?;
             let n = jacobian.rows.len();
             let internal = jacobian.internal_count();
             (
                 Outcome {
-                    rank: analysis.rank,
-                    dependent: supports(&analysis, None),
+                    rank: certified.rank,
+                    dependent: certified.circuits,
                     trivial,
-                    proof: Some(proof),
+                    proof: Some(certified.proof),
                     float_qr_rank: None,
                 },
                 n,

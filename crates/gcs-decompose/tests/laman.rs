@@ -187,3 +187,28 @@ fn smallest_frameworks() {
     assert_eq!(a.redundant.len(), 1, "K4 has one redundant bar");
     assert_eq!(a.redundant[0].spanning_group.len(), 5, "the whole K4 is the circuit");
 }
+
+/// Sketches as CAD programs write them (10-digit decimal coordinates) with a redundant bar
+/// whose circuit spans most of the framework: the dependency's coefficients have thousands of
+/// digits, beyond any reasonable number of primes, and the exact backend proves it with the
+/// displacements instead (`proof: kernel`). Its report equals the modular one, and every
+/// member of the spanning group is a Laman bar of the rigid part the extra bar closes.
+#[test]
+fn decimal_sketches_are_certified_exactly_by_the_displacements() {
+    use gcs_decompose::Backend;
+    use gcs_model::generate::laman_sketch;
+    for (n, seed) in [(40, 1), (120, 7)] {
+        let s = laman_sketch(n, seed);
+        let exact = run(&s);
+        let modp = analyze(&s, &AnalysisOptions { backend: Backend::ModP, ..Default::default() })
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(exact.proof.as_ref().map(|p| p.name()), Some("kernel"), "n = {n}");
+        assert_eq!(exact.rank, 2 * n - 3);
+        assert_eq!((exact.dof, exact.trivial_motions), (0, 3));
+        assert_eq!(exact.redundant.len(), 1);
+        let extra = &exact.redundant[0];
+        assert_eq!(s.constraint(extra.constraint).id, "extra");
+        assert_eq!(exact.redundant, modp.redundant);
+        assert!(extra.spanning_group.len() > n / 4, "{}", extra.spanning_group.len());
+    }
+}

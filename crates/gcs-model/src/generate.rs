@@ -21,10 +21,11 @@ fn ok<T>(r: Result<T, crate::ModelError>) -> T {
 }
 
 /// A distance value as a CAD user would type it: the Euclidean distance rounded to 4 decimals.
-fn dimension(p: &[i64], q: &[i64]) -> BigRational {
-    let d2: i64 = p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum();
-    let d = (d2 as f64).sqrt();
-    BigRational::new(((d * 10_000.0).round() as i64).into(), 10_000.into())
+fn dimension(p: &[BigRational], q: &[BigRational]) -> BigRational {
+    use num_traits::ToPrimitive;
+    let d2: f64 =
+        p.iter().zip(q).map(|(a, b)| (a - b).to_f64().unwrap_or(0.0)).map(|x| x * x).sum();
+    BigRational::new(((d2.sqrt() * 10_000.0).round() as i64).into(), 10_000.into())
 }
 
 /// `n` fully constrained CAD rectangles side by side on a grid, each written as a user writes
@@ -101,9 +102,21 @@ pub fn laman_edges(n: usize, type2: f64, rng: &mut SplitMix64) -> Vec<(usize, us
 /// A bar-and-joint framework: points `p0…` at the given integer coordinates and one
 /// `Distance` per edge (`d0…`, in edge order), in dimension `dim`.
 pub fn framework(name: &str, dim: Dim, coords: &[Vec<i64>], edges: &[(usize, usize)]) -> System {
+    let coords: Vec<Vec<BigRational>> =
+        coords.iter().map(|c| c.iter().map(|x| int(*x)).collect()).collect();
+    framework_at(name, dim, &coords, edges)
+}
+
+/// [`framework`] at rational coordinates.
+pub fn framework_at(
+    name: &str,
+    dim: Dim,
+    coords: &[Vec<BigRational>],
+    edges: &[(usize, usize)],
+) -> System {
     let mut b = SystemBuilder::new(name, dim);
     for (i, c) in coords.iter().enumerate() {
-        ok(b.point(&format!("p{i}"), Some(c.iter().map(|x| int(*x)).collect())));
+        ok(b.point(&format!("p{i}"), Some(c.clone())));
     }
     for (k, &(u, v)) in edges.iter().enumerate() {
         let value = dimension(&coords[u], &coords[v]);
@@ -132,6 +145,36 @@ pub fn laman(n: usize, seed: u64) -> System {
     let edges = laman_edges(n, 0.5, &mut rng);
     let coords = random_coords(n, Dim::Two, 1000, &mut rng);
     framework(&format!("laman-{n}-{seed}"), Dim::Two, &coords, &edges)
+}
+
+/// A random Laman framework as a CAD program writes it (the issue-10 family): points with
+/// 10-significant-digit decimal coordinates in `[-1000, 1000]` (`123.4567891`), dimensions
+/// rounded to 4 decimals, and one redundant distance `extra` between the first point and the
+/// last one not already joined to it, whose circuit spans a large rigid part. Rigid, one
+/// redundant constraint.
+pub fn laman_sketch(n: usize, seed: u64) -> System {
+    let n = n.max(3);
+    let mut rng = SplitMix64::new(seed);
+    let edges = laman_edges(n, 0.5, &mut rng);
+    let coords: Vec<Vec<BigRational>> = (0..n)
+        .map(|_| {
+            (0..2)
+                .map(|_| {
+                    let k = rng.range(-9_999_999_999, 9_999_999_999);
+                    BigRational::new(k.into(), 10_000_000.into())
+                })
+                .collect()
+        })
+        .collect();
+    let mut s = framework_at(&format!("laman-sketch-{n}-{seed}"), Dim::Two, &coords, &edges);
+    let joined = |v: usize| edges.iter().any(|&(a, b)| (a, b) == (0, v) || (a, b) == (v, 0));
+    if let Some(v) = (1..n).rev().find(|&v| !joined(v)) {
+        let mut b = SystemBuilder::from_system(s);
+        let value = dimension(&coords[0], &coords[v]);
+        ok(b.constraint(ConstraintKind::Distance, "extra", &["p0", &format!("p{v}")], Some(value)));
+        s = b.build();
+    }
+    s
 }
 
 /// The edges of a random triangulated sphere on `n ≥ 4` vertices: from a tetrahedron, by
@@ -233,6 +276,12 @@ mod tests {
         assert_eq!((c.entities().len(), c.constraints().len()), (11, 15));
         let s = strip(6, 1);
         assert_eq!(s.constraints().len(), 2 * 12 - 3);
+        for n in [4, 30] {
+            let s = laman_sketch(n, 5);
+            assert_eq!(s.constraints().len(), 2 * n - 2);
+            assert_eq!(s.constraints().last().map(|c| c.id.as_str()), Some("extra"));
+            assert!(s.to_ron().contains("extra"));
+        }
         let r = rectangles(10);
         assert_eq!(r.naive_dof(), 0);
         assert_eq!(r.constraints().len(), 70);

@@ -470,6 +470,11 @@ impl SystemBuilder {
         }
     }
 
+    /// A builder that goes on from an existing system (its items keep their ids and order).
+    pub fn from_system(system: System) -> SystemBuilder {
+        SystemBuilder { system }
+    }
+
     /// The system as built so far.
     pub fn system(&self) -> &System {
         &self.system

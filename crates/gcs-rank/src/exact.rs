@@ -8,7 +8,7 @@ use num_traits::{One, Signed, Zero};
 use crate::Field;
 use crate::echelon::{EchelonOptions, Insertion, RowAnalysis, analyse_rows};
 use crate::error::RankError;
-use crate::modp::{ModP, ModPrime, bigint_mod, inv_mod};
+use crate::modp::{ModP, ModQ, bigint_mod, inv_mod, nth_lifting_prime, with_modulus};
 use crate::sparse::{SparseRow, linear_combination};
 
 /// The second prime of multi-modular lifting, `2^64 − 59`.
@@ -32,7 +32,19 @@ pub enum Proof {
     /// coefficients lifted from the product of several primes (Chinese remaindering) before
     /// they passed the exact check.
     MultiModularCertified {
-        /// The primes whose product was used, the elimination prime first.
+        /// The primes whose product was used (the most any one dependency needed), the
+        /// elimination prime first.
+        primes: Vec<u64>,
+    },
+    /// Elimination modulo `prime`, whose pivots prove the lower bound; some dependencies were
+    /// proven by exact kernel vectors ([`KernelHint`]: the circuit leaves no motion the
+    /// dependent row can see), the others lifted to ℚ and checked as above.
+    KernelCertified {
+        /// The prime, [`ModP::PRIME`].
+        prime: u64,
+        /// How many dependencies the kernel vectors proved.
+        kernel: usize,
+        /// The primes used to lift the others (the elimination prime first).
         primes: Vec<u64>,
     },
 }
@@ -44,6 +56,7 @@ impl Proof {
             Proof::Rational => "rational",
             Proof::ModularCertified { .. } => "modular",
             Proof::MultiModularCertified { .. } => "multimodular",
+            Proof::KernelCertified { .. } => "kernel",
         }
     }
 }
@@ -56,10 +69,30 @@ impl std::fmt::Display for Proof {
                 write!(f, "elimination modulo {prime}, certified over Q")
             }
             Proof::MultiModularCertified { primes } => {
-                let primes: Vec<String> = primes.iter().map(u64::to_string).collect();
-                write!(f, "elimination modulo {}, certified over Q", primes.join(" · "))
+                write!(f, "elimination modulo {}, certified over Q", product(primes))
+            }
+            Proof::KernelCertified { prime, kernel, primes } => {
+                write!(
+                    f,
+                    "elimination modulo {prime}, certified over Q: {kernel} {} proven by exact \
+                     kernel vectors",
+                    if *kernel == 1 { "dependency" } else { "dependencies" }
+                )?;
+                if primes.len() > 1 {
+                    write!(f, ", others lifted modulo {}", product(primes))?;
+                }
+                Ok(())
             }
         }
+    }
+}
+
+/// A product of primes for messages: every factor up to three, else the first and a count.
+fn product(primes: &[u64]) -> String {
+    if primes.len() <= 3 {
+        primes.iter().map(u64::to_string).collect::<Vec<_>>().join(" · ")
+    } else {
+        format!("{} · … ({} primes)", primes[0], primes.len())
     }
 }
 
@@ -154,27 +187,11 @@ pub fn lift_dependency(
     reproduces(row, rows, &lifted).then_some(lifted)
 }
 
-/// One elimination modulo a prime, with combinations, or `None` when the prime divides a
-/// denominator.
-fn modular_pass<F: Field>(ncols: usize, rows: &[SparseRow<BigRational>]) -> Option<RowAnalysis<F>> {
-    let mut images = Vec::with_capacity(rows.len());
-    for row in rows {
-        images.push(row.map(F::from_rational).ok()?);
-    }
-    Some(analyse_rows(ncols, images, EchelonOptions::tracked()))
-}
-
-/// Residues of the combination of a dependent outcome, as `(id, residue)`.
-fn residues<F: Field>(outcome: &Insertion<F>, value: impl Fn(&F) -> u64) -> Residues {
-    outcome.combination().unwrap_or(&[]).iter().map(|(id, c)| (*id, value(c))).collect()
-}
-
 /// `(insertion id, residue)` pairs of one combination, sorted by id.
 type Residues = Vec<(usize, u64)>;
 
 /// A dependency whose coefficients are being lifted by Chinese remaindering.
 struct Lift {
-    row: usize,
     /// `(id, residue modulo the current modulus)`, sorted by id.
     residues: Vec<(usize, BigInt)>,
 }
@@ -233,37 +250,6 @@ impl Lift {
     }
 }
 
-/// A field whose elements are residues modulo a prime below 2^64.
-trait Residue: Field {
-    fn residue(&self) -> u64;
-}
-
-impl Residue for ModP {
-    fn residue(&self) -> u64 {
-        self.value()
-    }
-}
-
-impl<const P: u64> Residue for ModPrime<P> {
-    fn residue(&self) -> u64 {
-        self.value()
-    }
-}
-
-/// The independent/dependent pattern and the residues of every combination.
-type ResiduePass = fn(usize, &[SparseRow<BigRational>]) -> Option<(Vec<bool>, Vec<Residues>)>;
-
-/// One elimination modulo the prime of `F`, reduced to its pattern and residues.
-fn residue_pass<F: Residue>(
-    ncols: usize,
-    rows: &[SparseRow<BigRational>],
-) -> Option<(Vec<bool>, Vec<Residues>)> {
-    let analysis: RowAnalysis<F> = modular_pass(ncols, rows)?;
-    let pattern = analysis.outcomes.iter().map(Insertion::is_independent).collect();
-    let by_row = analysis.outcomes.iter().map(|o| residues(o, F::residue)).collect();
-    Some((pattern, by_row))
-}
-
 /// The exact path: the rank over ℚ and the outcome of every row, proven, at modular speed.
 ///
 /// Eliminates modulo `p = 2^61 − 1` ([`ModP`]) with combinations tracked. Pivots found mod `p`
@@ -271,11 +257,14 @@ fn residue_pass<F: Residue>(
 /// mod `p` is lifted to ℚ by [`rational_reconstruction`] of its coefficients and checked
 /// exactly against the rational rows, which proves the upper bound; together they prove that
 /// every row has the same outcome over ℚ as mod `p`. Dependencies whose coefficients are too
-/// large for one prime (numerators and denominators above about 2^30) are lifted again modulo
-/// `p·p₂` and then `p·p₂·p₃` ([`SECOND_PRIME`], [`THIRD_PRIME`], bounds about 2^61 and 2^93)
-/// by Chinese remaindering. If a lift or check still fails, the primes disagree on which rows
-/// are dependent, or a prime divides a denominator, the function falls back to exact rational
-/// elimination and reports [`Proof::Rational`].
+/// large for one prime (numerators and denominators above about 2^30) are lifted again through
+/// as many further primes as they need ([`SECOND_PRIME`], [`THIRD_PRIME`], then primes below
+/// 2^62), eliminating only the rows of their circuit modulo each, by Chinese remaindering with
+/// early termination: the first reconstruction that passes the exact check ends it, and
+/// Hadamard's bound on the coefficients caps the number of primes. Only if the primes
+/// disagree on which rows are dependent (a prime divides a minor), or a prime divides a
+/// denominator, does the function fall back to exact rational elimination and report
+/// [`Proof::Rational`].
 ///
 /// The returned combinations (when `track_combinations`) are over ℚ, exact, and equal to those
 /// of [`analyse_rows`] over [`BigRational`]. The pivot columns are those found mod `p`: they
@@ -292,113 +281,448 @@ pub fn analyse_rows_exact(
     rows: &[SparseRow<BigRational>],
     track_combinations: bool,
 ) -> Result<(RowAnalysis<BigRational>, Proof), RankError> {
-    if let Some(result) = certified(ncols, rows, track_combinations) {
-        return Ok(result);
+    if let Some(core) = certify(ncols, rows, None) {
+        let outcomes = core
+            .outcomes
+            .into_iter()
+            .map(|o| match o {
+                Outcome::Independent { pivot } => Insertion::Independent { pivot },
+                Outcome::Dependent { coefficients, .. } => Insertion::Dependent {
+                    combination: if track_combinations { coefficients } else { None },
+                },
+            })
+            .collect();
+        return Ok((RowAnalysis { rank: core.rank, outcomes }, core.proof));
     }
     Ok((rational_analysis(ncols, rows, track_combinations), Proof::Rational))
 }
 
-fn certified(
+/// Exact vectors that may prove dependencies without their coefficients: in the witness
+/// method, the infinitesimal displacements, which every row of a displacement-invariant
+/// constraint annihilates.
+///
+/// A dependency found modulo the prime, `row_i = Σ_{j ∈ C} λ_j row_j` over its circuit `C`, is
+/// proven by them when the rows of `C` (with the free rows of the columns they touch) leave no
+/// other kernel: let `X` be the columns of every group `C ∪ {i}` touches and `S` those rows; the
+/// combinations `W` of the vectors that `S` annihilates (computed exactly) lie in the kernel of
+/// `S` on `X`, whose dimension is at most `|X| − rank_p(S)`. When `rank_p(W) ≥ |X| − rank_p(S)`
+/// the kernel is exactly `span(W)`, and `row_i · W = 0` (checked exactly) puts `row_i` in the
+/// row space of `S` over ℚ. Both ranks are lower bounds computed modulo the prime, so the
+/// argument is a proof. In rigidity terms: the circuit minus the row is rigid, so the row,
+/// invariant under displacements, is implied. It costs one modular rank of the circuit, where
+/// lifting the coefficients would need as many primes as they have digits (thousands of bits
+/// for a large circuit at a sketch with decimal coordinates).
+#[derive(Clone, Debug, PartialEq)]
+pub struct KernelHint {
+    /// Dense vectors over the columns (length at least the number of columns).
+    pub vectors: Vec<Vec<BigRational>>,
+    /// The group of each column (the entity that owns it); a certificate takes whole groups.
+    pub groups: Vec<usize>,
+    /// Rows `0..free_rows` may join any certificate whose groups contain their columns
+    /// (entity-internal rows: normalisations); they may then be missing from the circuits
+    /// reported, which only ever list rows of the combination found modulo the prime.
+    pub free_rows: usize,
+}
+
+/// The outcome of [`certify_rows`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CertifiedRows {
+    /// The rank over ℚ.
+    pub rank: usize,
+    /// Per row, in order: `None` when independent of the rows before it, else the ids of the
+    /// earlier rows in its fundamental circuit (sorted; see [`KernelHint::free_rows`]).
+    pub circuits: Vec<Option<Vec<usize>>>,
+    /// How it was proven.
+    pub proof: Proof,
+}
+
+/// The rank over ℚ, the outcome of every row and the support of every dependency (its
+/// fundamental circuit), proven, without the coefficients of the dependencies: as
+/// [`analyse_rows_exact`], but a dependency whose coefficients a prime cannot reconstruct is
+/// first tried against the kernel vectors of `hint` ([`KernelHint`]), and only then lifted
+/// through further primes.
+///
+/// The circuit of a dependency is the support of its combination modulo the prime; it is the
+/// support over ℚ because the combination over ℚ reduces to it (its denominators divide a
+/// minor of the circuit that the prime does not divide), and a coefficient cannot vanish over
+/// ℚ and not modulo the prime; the converse (a coefficient over ℚ divisible by the prime) is
+/// excluded by the exact check of lifted coefficients, and for kernel certificates by the
+/// certificate's rows being the circuit itself (with free rows only).
+///
+/// # Errors
+/// None at present (every input has a rational answer); the `Result` leaves room for limits.
+pub fn certify_rows(
     ncols: usize,
     rows: &[SparseRow<BigRational>],
-    track: bool,
-) -> Option<(RowAnalysis<BigRational>, Proof)> {
+    hint: Option<&KernelHint>,
+) -> Result<CertifiedRows, RankError> {
+    if let Some(core) = certify(ncols, rows, hint) {
+        let circuits = core
+            .outcomes
+            .into_iter()
+            .map(|o| match o {
+                Outcome::Independent { .. } => None,
+                Outcome::Dependent { circuit, .. } => Some(circuit),
+            })
+            .collect();
+        return Ok(CertifiedRows { rank: core.rank, circuits, proof: core.proof });
+    }
+    let analysis = rational_analysis(ncols, rows, true);
+    let circuits = analysis
+        .outcomes
+        .iter()
+        .map(|o| o.combination().map(|c| c.iter().map(|(id, _)| *id).collect()))
+        .collect();
+    Ok(CertifiedRows { rank: analysis.rank, circuits, proof: Proof::Rational })
+}
+
+/// One row's certified outcome.
+enum Outcome {
+    Independent {
+        pivot: usize,
+    },
+    Dependent {
+        /// The ids of the combination found modulo the prime.
+        circuit: Vec<usize>,
+        /// The coefficients over ℚ, when they were lifted (not for kernel certificates).
+        coefficients: Option<Vec<(usize, BigRational)>>,
+    },
+}
+
+struct Core {
+    rank: usize,
+    outcomes: Vec<Outcome>,
+    proof: Proof,
+}
+
+fn certify(
+    ncols: usize,
+    rows: &[SparseRow<BigRational>],
+    hint: Option<&KernelHint>,
+) -> Option<Core> {
+    let mut images = Vec::with_capacity(rows.len());
+    for row in rows {
+        images.push(row.map(ModP::from_rational).ok()?);
+    }
     // Without dependencies there is nothing to lift: the pivots found modulo p prove that every
     // row is independent over ℚ. Tracking combinations costs much more than the elimination
-    // (they fill in), so look first.
-    {
-        let mut images = Vec::with_capacity(rows.len());
-        for row in rows {
-            images.push(row.map(ModP::from_rational).ok()?);
-        }
-        // `echelon_rank` ignores entries at or beyond `ncols`: such rows can only lower the
-        // rank found here, and then the full analysis below (which extends the matrix) runs.
-        let (rank, pivots) = crate::echelon_rank(ncols, images);
-        if rank == rows.len() {
-            let outcomes = pivots
-                .into_iter()
-                .map(|p| Insertion::Independent { pivot: p.unwrap_or(0) })
-                .collect();
-            return Some((
-                RowAnalysis { rank, outcomes },
-                Proof::ModularCertified { prime: ModP::PRIME },
-            ));
-        }
+    // (they fill in), so look first. `echelon_rank` ignores entries at or beyond `ncols`: such
+    // rows can only lower the rank found here, and then the full analysis below (which extends
+    // the matrix) runs.
+    let (rank, pivots) = crate::echelon_rank(ncols, images.iter().cloned());
+    if rank == rows.len() {
+        let outcomes =
+            pivots.into_iter().map(|p| Outcome::Independent { pivot: p.unwrap_or(0) }).collect();
+        return Some(Core {
+            rank,
+            outcomes,
+            proof: Proof::ModularCertified { prime: ModP::PRIME },
+        });
     }
-    let first: RowAnalysis<ModP> = modular_pass(ncols, rows)?;
-    let mut lifted: Vec<Option<Vec<(usize, BigRational)>>> = vec![None; rows.len()];
-    let mut pending: Vec<Lift> = Vec::new();
+    let first: RowAnalysis<ModP> =
+        analyse_rows(ncols, images.iter().cloned(), EchelonOptions::tracked());
+    let mut kernel = KernelCertifier::new(hint, &first, rows);
+    let mut primes_used = 1;
+    let mut by_kernel = 0;
+    let mut outcomes = Vec::with_capacity(rows.len());
     for (i, outcome) in first.outcomes.iter().enumerate() {
-        let Some(combination) = outcome.combination() else { continue };
-        let lift: Option<Vec<(usize, BigRational)>> = combination
+        let combination = match outcome {
+            Insertion::Independent { pivot } => {
+                outcomes.push(Outcome::Independent { pivot: *pivot });
+                continue;
+            }
+            Insertion::Dependent { combination } => combination.as_deref().unwrap_or(&[]),
+        };
+        let circuit: Vec<usize> = combination.iter().map(|(id, _)| *id).collect();
+        // One prime: small coefficients.
+        let one: Option<Vec<(usize, BigRational)>> = combination
             .iter()
             .map(|(id, c)| reconstruct_u64(c.value(), ModP::PRIME).map(|q| (*id, q)))
             .collect();
-        match lift {
-            Some(q) if check_combination(rows, i, &q) => lifted[i] = Some(q),
-            _ => pending.push(Lift {
-                row: i,
-                residues: residues(outcome, ModP::residue)
-                    .into_iter()
-                    .map(|(id, r)| (id, BigInt::from(r)))
-                    .collect(),
-            }),
+        if let Some(q) = one.filter(|q| check_combination(rows, i, q)) {
+            outcomes.push(Outcome::Dependent { circuit, coefficients: Some(q) });
+            continue;
         }
+        // Exact kernel vectors: no coefficients needed.
+        if let Some(k) = kernel.as_mut()
+            && k.certifies(rows, &images, i, &circuit)
+        {
+            by_kernel += 1;
+            outcomes.push(Outcome::Dependent { circuit, coefficients: None });
+            continue;
+        }
+        // As many primes as the coefficients need, on the circuit alone.
+        let (q, used) = lift_circuit(ncols, rows, i, combination)?;
+        primes_used = primes_used.max(used);
+        outcomes.push(Outcome::Dependent { circuit, coefficients: Some(q) });
     }
-
     let mut primes = vec![ModP::PRIME];
-    if !pending.is_empty() {
-        let pattern: Vec<bool> = first.outcomes.iter().map(Insertion::is_independent).collect();
-        let mut modulus = BigInt::from(ModP::PRIME);
-        let passes: [(u64, ResiduePass); 2] = [
-            (SECOND_PRIME, residue_pass::<ModPrime<SECOND_PRIME>>),
-            (THIRD_PRIME, residue_pass::<ModPrime<THIRD_PRIME>>),
-        ];
-        for (p, pass) in passes {
-            // A prime that divides a denominator, or finds other dependencies (it divides a
-            // minor), cannot help: leave it to the rational fallback.
-            let (other_pattern, by_row) = pass(ncols, rows)?;
-            if other_pattern != pattern {
-                return None;
-            }
-            for lift in &mut pending {
-                lift.absorb(&modulus, p, &by_row[lift.row]);
-            }
-            modulus *= BigInt::from(p);
-            primes.push(p);
-            pending.retain(|lift| match lift.reconstruct(&modulus) {
-                Some(q) if check_combination(rows, lift.row, &q) => {
-                    lifted[lift.row] = Some(q);
-                    false
-                }
-                _ => true,
-            });
-            if pending.is_empty() {
-                break;
-            }
-        }
-        if !pending.is_empty() {
-            return None;
-        }
-    }
-
-    let outcomes = first
-        .outcomes
-        .iter()
-        .zip(lifted)
-        .map(|(outcome, q)| match outcome {
-            Insertion::Independent { pivot } => Insertion::Independent { pivot: *pivot },
-            Insertion::Dependent { .. } => {
-                Insertion::Dependent { combination: if track { q } else { None } }
-            }
-        })
-        .collect();
-    let proof = if primes.len() == 1 {
+    primes.extend((0..primes_used - 1).map(nth_lifting_prime));
+    let proof = if by_kernel > 0 {
+        Proof::KernelCertified { prime: ModP::PRIME, kernel: by_kernel, primes }
+    } else if primes.len() == 1 {
         Proof::ModularCertified { prime: ModP::PRIME }
     } else {
         Proof::MultiModularCertified { primes }
     };
-    Some((RowAnalysis { rank: first.rank, outcomes }, proof))
+    Some(Core { rank: first.rank, outcomes, proof })
+}
+
+/// Lifts the dependency of row `i` found modulo [`ModP::PRIME`] (`first`: its combination)
+/// through further primes, eliminating only the rows of its circuit modulo each, until a
+/// rational reconstruction passes the exact check; gives up past Hadamard's bound on the
+/// coefficients. Returns the coefficients and the number of primes used (the first included).
+fn lift_circuit(
+    ncols: usize,
+    rows: &[SparseRow<BigRational>],
+    i: usize,
+    first: &[(usize, ModP)],
+) -> Option<(Vec<(usize, BigRational)>, usize)> {
+    let circuit: Vec<usize> = first.iter().map(|(id, _)| *id).collect();
+    let mut lift =
+        Lift { residues: first.iter().map(|(id, c)| (*id, BigInt::from(c.value()))).collect() };
+    let mut modulus = BigInt::from(ModP::PRIME);
+    let needed = 2 * coefficient_bound_bits(rows, &circuit, i) + 2;
+    let mut used = 1;
+    let mut k = 0;
+    while modulus.bits() <= needed + 64 {
+        let q = nth_lifting_prime(k);
+        k += 1;
+        // A prime that divides a denominator or a minor of the circuit cannot help: skip it.
+        let Some(residues) = with_modulus(q, || circuit_residues(ncols, rows, &circuit, i)) else {
+            continue;
+        };
+        lift.absorb(&modulus, q, &residues);
+        modulus *= BigInt::from(q);
+        used += 1;
+        if let Some(q) = lift.reconstruct(&modulus)
+            && check_combination(rows, i, &q)
+        {
+            return Some((q, used));
+        }
+    }
+    None
+}
+
+/// The combination of row `i` over the rows `circuit` modulo the current [`ModQ`] prime, as
+/// `(id, residue)` sorted by id; `None` when the circuit's rows are dependent there or row `i`
+/// is not in their span (the prime divides a minor or a denominator).
+fn circuit_residues(
+    ncols: usize,
+    rows: &[SparseRow<BigRational>],
+    circuit: &[usize],
+    i: usize,
+) -> Option<Residues> {
+    let mut echelon = crate::Echelon::<ModQ>::new(ncols, EchelonOptions::tracked());
+    for &j in circuit {
+        let image = rows[j].map(ModQ::from_rational).ok()?;
+        if !echelon.insert(image).is_independent() {
+            return None;
+        }
+    }
+    let image = rows[i].map(ModQ::from_rational).ok()?;
+    match echelon.insert(image) {
+        Insertion::Dependent { combination: Some(c) } => {
+            Some(c.iter().map(|(local, v)| (circuit[*local], v.value())).collect())
+        }
+        _ => None,
+    }
+}
+
+/// Bits of Hadamard's bound on the numerators and denominators of the coefficients of row `i`
+/// over its circuit: with each row scaled to integers by the lcm `d_r` of its denominators,
+/// Cramer's rule makes every coefficient a ratio of minors times `d_j / d_i`, and a minor is at
+/// most the product of the rows' Euclidean norms.
+fn coefficient_bound_bits(rows: &[SparseRow<BigRational>], circuit: &[usize], i: usize) -> u64 {
+    let mut total = 0;
+    let mut largest_denominator = 0;
+    for &r in circuit.iter().chain(std::iter::once(&i)) {
+        let entries = rows[r].entries();
+        let mut lcm = BigInt::one();
+        for (_, v) in entries {
+            lcm = lcm.lcm(v.denom());
+        }
+        let biggest =
+            entries.iter().map(|(_, v)| (v.numer() * (&lcm / v.denom())).bits()).max().unwrap_or(0);
+        // ‖R‖₂ ≤ √nnz · max |entry|
+        total += biggest + (entries.len().max(1) as u64).ilog2() as u64 / 2 + 1;
+        largest_denominator = largest_denominator.max(lcm.bits());
+    }
+    total + largest_denominator
+}
+
+/// The kernel-vector certificates of [`KernelHint`], with their working data.
+struct KernelCertifier<'h> {
+    hint: &'h KernelHint,
+    /// Group → its columns.
+    columns: Vec<Vec<usize>>,
+    /// Group → the free rows (independent modulo the prime) within it.
+    free: Vec<Vec<usize>>,
+    /// Row → its products with the hint's vectors, exact (computed on demand).
+    products: Vec<Option<Vec<BigRational>>>,
+    /// The hint's vectors modulo the prime.
+    vectors_p: Vec<Vec<ModP>>,
+}
+
+impl<'h> KernelCertifier<'h> {
+    fn new(
+        hint: Option<&'h KernelHint>,
+        first: &RowAnalysis<ModP>,
+        rows: &[SparseRow<BigRational>],
+    ) -> Option<Self> {
+        let hint = hint?;
+        let ngroups = hint.groups.iter().max().map_or(0, |g| g + 1);
+        let mut columns = vec![Vec::new(); ngroups];
+        for (c, g) in hint.groups.iter().enumerate() {
+            columns[*g].push(c);
+        }
+        let vectors_p = hint
+            .vectors
+            .iter()
+            .map(|v| v.iter().map(ModP::from_rational).collect::<Result<Vec<_>, _>>())
+            .collect::<Result<Vec<_>, _>>()
+            .ok()?;
+        let mut free = vec![Vec::new(); ngroups];
+        for (r, outcome) in first.outcomes.iter().enumerate().take(hint.free_rows) {
+            if outcome.is_independent()
+                && let Some(g) = rows[r].entries().first().and_then(|(c, _)| hint.groups.get(*c))
+            {
+                free[*g].push(r);
+            }
+        }
+        Some(KernelCertifier {
+            hint,
+            columns,
+            free,
+            products: vec![None; first.outcomes.len()],
+            vectors_p,
+        })
+    }
+
+    fn group_of(&self, col: usize) -> Option<usize> {
+        self.hint.groups.get(col).copied()
+    }
+
+    /// `row · v` for every hint vector, exactly.
+    fn products(&mut self, rows: &[SparseRow<BigRational>], r: usize) -> Option<&[BigRational]> {
+        if self.products[r].is_none() {
+            let mut out = Vec::with_capacity(self.hint.vectors.len());
+            for v in &self.hint.vectors {
+                let mut sum = <BigRational as Zero>::zero();
+                for (c, a) in rows[r].entries() {
+                    let x = v.get(*c)?;
+                    if !Zero::is_zero(x) {
+                        sum += a * x;
+                    }
+                }
+                out.push(sum);
+            }
+            self.products[r] = Some(out);
+        }
+        self.products[r].as_deref()
+    }
+
+    /// Whether the kernel vectors prove that row `i` is in the span of the rows `circuit`
+    /// (see [`KernelHint`]).
+    fn certifies(
+        &mut self,
+        rows: &[SparseRow<BigRational>],
+        images: &[SparseRow<ModP>],
+        i: usize,
+        circuit: &[usize],
+    ) -> bool {
+        self.try_certify(rows, images, i, circuit).unwrap_or(false)
+    }
+
+    fn try_certify(
+        &mut self,
+        rows: &[SparseRow<BigRational>],
+        images: &[SparseRow<ModP>],
+        i: usize,
+        circuit: &[usize],
+    ) -> Option<bool> {
+        let k = self.hint.vectors.len();
+        // The groups the circuit and the row touch, and their columns.
+        let mut groups = Vec::new();
+        for &r in circuit.iter().chain(std::iter::once(&i)) {
+            for (c, _) in rows[r].entries() {
+                groups.push(self.group_of(*c)?);
+            }
+        }
+        groups.sort_unstable();
+        groups.dedup();
+        let cols: Vec<usize> =
+            groups.iter().flat_map(|g| self.columns[*g].iter().copied()).collect();
+        // The certificate's rows: the circuit, and the free rows of those groups.
+        let mut set: Vec<usize> = circuit.to_vec();
+        for g in &groups {
+            for &r in &self.free[*g] {
+                if r < i
+                    && circuit.binary_search(&r).is_err()
+                    && rows[r].entries().iter().all(|(c, _)| {
+                        self.group_of(*c).is_some_and(|g| groups.binary_search(&g).is_ok())
+                    })
+                {
+                    set.push(r);
+                }
+            }
+        }
+        let width = cols.len();
+        let rank_s =
+            crate::echelon_rank(self.hint.groups.len(), set.iter().map(|&r| images[r].clone())).0;
+        if rank_s + k < width {
+            return Some(false);
+        }
+        // The combinations of the vectors that the certificate's rows annihilate, exactly.
+        let mut products = crate::Echelon::<BigRational>::new(k, EchelonOptions::default());
+        for &r in &set {
+            if products.rank() == k {
+                break;
+            }
+            let p = self.products(rows, r)?.to_vec();
+            let row = SparseRow::from_entries(p.into_iter().enumerate().collect());
+            if !row.is_zero() {
+                products.insert(row);
+            }
+        }
+        let lambdas = products.kernel_basis();
+        // Their rank on the certificate's columns, modulo the prime (a lower bound).
+        let local: std::collections::HashMap<usize, usize> =
+            cols.iter().enumerate().map(|(l, c)| (*c, l)).collect();
+        let mut w_rows = Vec::with_capacity(lambdas.len());
+        for lambda in &lambdas {
+            let lp: Vec<(usize, ModP)> = lambda
+                .entries()
+                .iter()
+                .map(|(g, x)| ModP::from_rational(x).map(|v| (*g, v)))
+                .collect::<Result<_, _>>()
+                .ok()?;
+            let mut entries = Vec::with_capacity(width);
+            for &c in &cols {
+                let mut sum = ModP::zero();
+                for (g, x) in &lp {
+                    sum = sum.add(&x.mul(self.vectors_p[*g].get(c)?));
+                }
+                if !sum.is_zero() {
+                    entries.push((local[&c], sum));
+                }
+            }
+            w_rows.push(SparseRow::from_entries(entries));
+        }
+        let rank_w = crate::echelon_rank(width, w_rows).0;
+        if rank_s + rank_w < width {
+            return Some(false);
+        }
+        // The kernel of the certificate's rows is span(W): row i must vanish on it, exactly.
+        let pi = self.products(rows, i)?.to_vec();
+        Some(lambdas.iter().all(|lambda| {
+            let mut sum = <BigRational as Zero>::zero();
+            for (g, x) in lambda.entries() {
+                sum += x * &pi[*g];
+            }
+            Zero::is_zero(&sum)
+        }))
+    }
 }
 
 /// Exact rational elimination, with GMP when the `rug` feature is on.
@@ -442,6 +766,7 @@ fn rational_analysis(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ModPrime;
 
     fn q(n: i64, d: i64) -> BigRational {
         BigRational::new(BigInt::from(n), BigInt::from(d))
@@ -501,7 +826,7 @@ mod tests {
         let m1 = BigInt::from(ModP::PRIME);
         let r1 = ModP::from_rational(&x).unwrap().value();
         let r2 = ModPrime::<SECOND_PRIME>::from_rational(&x).unwrap().value();
-        let mut lift = Lift { row: 0, residues: vec![(0, BigInt::from(r1))] };
+        let mut lift = Lift { residues: vec![(0, BigInt::from(r1))] };
         assert_ne!(lift.reconstruct(&m1), Some(vec![(0, x.clone())]));
         lift.absorb(&m1, SECOND_PRIME, &[(0, r2)]);
         let m12 = &m1 * BigInt::from(SECOND_PRIME);

@@ -106,7 +106,8 @@ mod sparse;
 pub use echelon::{Echelon, EchelonOptions, Insertion, RowAnalysis, analyse_rows};
 pub use error::RankError;
 pub use exact::{
-    Proof, SECOND_PRIME, THIRD_PRIME, analyse_rows_exact, lift_dependency, rational_reconstruction,
+    CertifiedRows, KernelHint, Proof, SECOND_PRIME, THIRD_PRIME, analyse_rows_exact, certify_rows,
+    lift_dependency, rational_reconstruction,
 };
 pub use field::Field;
 pub use float::float_rank_qr;

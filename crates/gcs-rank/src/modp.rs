@@ -1,6 +1,9 @@
 //! Prime fields: [`ModP`] modulo the Mersenne prime 2^61 − 1 (the fast exact path) and
 //! [`ModPrime`] modulo any prime below 2^64 (the extra primes of multi-modular certification).
 
+use std::cell::Cell;
+use std::sync::Mutex;
+
 use num_bigint::{BigInt, Sign};
 use num_rational::BigRational;
 
@@ -206,6 +209,119 @@ impl<const P: u64> Field for ModPrime<P> {
     }
 }
 
+thread_local! {
+    /// The modulus of [`ModQ`] on this thread, set by [`with_modulus`].
+    static MODULUS: Cell<u64> = const { Cell::new(ModP::PRIME) };
+}
+
+/// An integer modulo a prime chosen at run time: the many primes of multi-modular lifting,
+/// which a const generic cannot enumerate. The modulus is per thread and is set for the
+/// duration of a closure by [`with_modulus`]; values must not outlive it. Crate-private for
+/// that reason.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
+pub(crate) struct ModQ(u64);
+
+impl ModQ {
+    pub(crate) fn value(self) -> u64 {
+        self.0
+    }
+}
+
+fn modulus() -> u64 {
+    MODULUS.with(Cell::get)
+}
+
+/// Runs `f` with the modulus of [`ModQ`] set to the prime `q` on this thread (restored after,
+/// even on unwinding).
+pub(crate) fn with_modulus<R>(q: u64, f: impl FnOnce() -> R) -> R {
+    struct Restore(u64);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            MODULUS.with(|m| m.set(self.0));
+        }
+    }
+    let _restore = Restore(MODULUS.with(|m| m.replace(q)));
+    f()
+}
+
+impl Field for ModQ {
+    prime_field_common!(ModQ, modulus());
+
+    #[inline]
+    fn mul(&self, rhs: &Self) -> Self {
+        ModQ(((self.0 as u128 * rhs.0 as u128) % modulus() as u128) as u64)
+    }
+}
+
+/// `b^e mod m` for `m < 2^64`.
+fn pow_mod(mut b: u64, mut e: u64, m: u64) -> u64 {
+    let mul = |x: u64, y: u64| ((x as u128 * y as u128) % m as u128) as u64;
+    let mut r = 1 % m;
+    b %= m;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = mul(r, b);
+        }
+        b = mul(b, b);
+        e >>= 1;
+    }
+    r
+}
+
+/// Deterministic Miller–Rabin: the first twelve prime bases decide every `n < 3.3·10^24`.
+pub(crate) fn is_prime(n: u64) -> bool {
+    const BASES: [u64; 12] = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37];
+    if n < 2 {
+        return false;
+    }
+    for b in BASES {
+        if n.is_multiple_of(b) {
+            return n == b;
+        }
+    }
+    let (mut d, mut s) = (n - 1, 0);
+    while d % 2 == 0 {
+        d /= 2;
+        s += 1;
+    }
+    BASES.iter().all(|&a| {
+        let mut x = pow_mod(a, d, n);
+        if x == 1 || x == n - 1 {
+            return true;
+        }
+        for _ in 1..s {
+            x = ((x as u128 * x as u128) % n as u128) as u64;
+            if x == n - 1 {
+                return true;
+            }
+        }
+        false
+    })
+}
+
+/// The primes of multi-modular lifting after [`ModP::PRIME`]: `2^64 − 59`, `2^63 − 25`, then the
+/// primes below `2^62` in decreasing order. `nth_lifting_prime(0)` is `2^64 − 59`. Generated on
+/// demand (a few dozen Miller–Rabin tests each) and kept for the life of the process.
+pub(crate) fn nth_lifting_prime(k: usize) -> u64 {
+    static PRIMES: Mutex<Vec<u64>> = Mutex::new(Vec::new());
+    let mut primes = match PRIMES.lock() {
+        Ok(guard) => guard,
+        Err(poisoned) => poisoned.into_inner(),
+    };
+    if primes.is_empty() {
+        primes.extend([crate::SECOND_PRIME, crate::THIRD_PRIME]);
+    }
+    while primes.len() <= k {
+        let last = *primes.last().unwrap_or(&(1 << 62));
+        let mut n = if last > 1 << 62 { (1 << 62) - 1 } else { last - 2 };
+        while !is_prime(n) {
+            n -= 2;
+        }
+        primes.push(n);
+    }
+    primes[k]
+}
+
 #[cfg(test)]
 mod tests {
     use num_traits::One;
@@ -282,5 +398,31 @@ mod tests {
         let bad = Rat::from(BigRational::new(BigInt::one(), BigInt::from(ModP::PRIME).pow(2)));
         assert!(!bad.is_small());
         assert!(matches!(ModP::from_rat(&bad), Err(RankError::DenominatorDivisibleByPrime { .. })));
+    }
+
+    #[test]
+    fn lifting_primes_are_distinct_large_primes() {
+        assert!(is_prime(ModP::PRIME) && is_prime(crate::SECOND_PRIME));
+        assert!(!is_prime(1) && !is_prime(91) && !is_prime(3_215_031_751) && is_prime(2));
+        // 2^62 − 57 is the largest prime below 2^62.
+        assert_eq!(nth_lifting_prime(2), (1 << 62) - 57);
+        let primes: Vec<u64> = (0..40).map(nth_lifting_prime).collect();
+        assert_eq!(primes[..2], [crate::SECOND_PRIME, crate::THIRD_PRIME]);
+        assert!(primes[2..].windows(2).all(|w| w[0] > w[1] && w[1] > 1 << 61));
+        assert!(primes.iter().all(|p| is_prime(*p) && *p != ModP::PRIME));
+    }
+
+    #[test]
+    fn run_time_moduli_agree_with_const_ones() {
+        let q = BigRational::new(BigInt::from(-1234567), BigInt::from(89));
+        let x = with_modulus(crate::SECOND_PRIME, || {
+            let x = ModQ::from_rational(&q).unwrap();
+            assert_eq!(Field::mul(&x, &x.inv().unwrap()), ModQ::one());
+            Field::mul(&x, &ModQ::from_i64(-5)).value()
+        });
+        let y = Field::mul(&Big::from_rational(&q).unwrap(), &Big::from_i64(-5)).value();
+        assert_eq!(x, y);
+        // the modulus is restored afterwards
+        assert_eq!(modulus(), ModP::PRIME);
     }
 }

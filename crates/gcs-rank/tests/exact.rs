@@ -5,8 +5,8 @@ mod common;
 
 use common::{SplitMix, frac, int, row};
 use gcs_rank::{
-    BigRational, EchelonOptions, ModP, Proof, RowAnalysis, SECOND_PRIME, SparseRow, THIRD_PRIME,
-    analyse_rows, analyse_rows_exact,
+    BigRational, EchelonOptions, KernelHint, ModP, Proof, RowAnalysis, SECOND_PRIME, SparseRow,
+    THIRD_PRIME, analyse_rows, analyse_rows_exact, certify_rows,
 };
 use num_bigint::BigInt;
 
@@ -87,18 +87,143 @@ fn coefficient_growth_beyond_one_prime_is_lifted_from_several() {
 }
 
 #[test]
-fn coefficients_too_large_for_three_primes_fall_back_to_rational() {
+fn coefficients_beyond_three_primes_are_lifted_through_as_many_as_they_need() {
     // 21 rows in 20 columns with entries up to 999: coefficients of about 200 bits, beyond the
-    // 93 bits that three primes can reconstruct. The answer is still exact.
+    // 93 bits that three primes can reconstruct. Further primes (below 2^62) are used until
+    // the reconstruction passes the exact check; no rational elimination.
     let rows = square_plus_one(20, 999, 5);
     let expected = reference(20, &rows);
-    assert!(coefficient_bits(&expected, 20) > 93);
+    let bits = coefficient_bits(&expected, 20);
+    assert!(bits > 93, "{bits}");
     let (analysis, proof) = analyse_rows_exact(20, &rows, true).unwrap();
-    assert_eq!(proof, Proof::Rational);
-    assert_eq!(proof.name(), "rational");
+    let Proof::MultiModularCertified { primes } = &proof else { panic!("{proof:?}") };
+    // Each prime brings about 30 bits of numerator and denominator: not many more than needed.
+    assert!(primes.len() > 3 && primes.len() as u64 <= bits / 30 + 3, "{} primes", primes.len());
+    assert_eq!(primes[..3], [ModP::PRIME, SECOND_PRIME, THIRD_PRIME]);
+    assert!(primes[3..].iter().all(|p| *p < 1 << 62 && *p > 1 << 61));
+    assert_eq!(proof.name(), "multimodular");
     assert_eq!(analysis, expected);
     assert_eq!(analysis.rank, 20);
     assert_eq!(analysis.dependent_rows(), vec![20]);
+}
+
+/// Points of the plane, exact.
+type Points = Vec<(BigRational, BigRational)>;
+
+/// The rigidity matrix of a 2D bar framework: rows `(p_u − p_v, p_v − p_u)` at the points.
+fn rigidity_rows(
+    points: &[(BigRational, BigRational)],
+    edges: &[(usize, usize)],
+) -> Vec<SparseRow<BigRational>> {
+    edges
+        .iter()
+        .map(|&(u, v)| {
+            let dx = &points[u].0 - &points[v].0;
+            let dy = &points[u].1 - &points[v].1;
+            SparseRow::from_entries(vec![
+                (2 * u, dx.clone()),
+                (2 * u + 1, dy.clone()),
+                (2 * v, -dx),
+                (2 * v + 1, -dy),
+            ])
+        })
+        .collect()
+}
+
+/// The planar displacements at `points`: two translations and the rotation about the origin.
+fn displacements(points: &[(BigRational, BigRational)]) -> KernelHint {
+    let n = points.len();
+    let mut t = vec![vec![int(0); 2 * n]; 3];
+    for (i, (x, y)) in points.iter().enumerate() {
+        t[0][2 * i] = int(1);
+        t[1][2 * i + 1] = int(1);
+        t[2][2 * i] = -y.clone();
+        t[2][2 * i + 1] = x.clone();
+    }
+    KernelHint { vectors: t, groups: (0..2 * n).map(|c| c / 2).collect(), free_rows: 0 }
+}
+
+/// A wheel (hub 0, rim 1..n: itself a rigidity circuit, its last rim bar redundant) with one
+/// extra chord, redundant too; points with 10-digit decimal coordinates, as a CAD program
+/// writes them.
+fn wheel_with_chord(n: usize, seed: u64) -> (Points, Vec<(usize, usize)>) {
+    let mut rng = SplitMix(seed);
+    let mut coordinate = || frac(rng.nonzero(999_999_999), 10_000_000);
+    let points: Vec<_> = (0..=n).map(|_| (coordinate(), coordinate())).collect();
+    let mut edges: Vec<(usize, usize)> = (1..=n).map(|i| (0, i)).collect();
+    edges.extend((1..n).map(|i| (i, i + 1)));
+    edges.push((n, 1));
+    edges.push((1, n / 2 + 1));
+    (points, edges)
+}
+
+#[test]
+fn a_rigid_circuit_is_certified_by_the_displacements_without_its_coefficients() {
+    let (points, edges) = wheel_with_chord(40, 3);
+    let rows = rigidity_rows(&points, &edges);
+    let ncols = 2 * points.len();
+    let expected = reference(ncols, &rows);
+    let last = rows.len() - 1;
+    // The coefficients (a self-stress of the wheel the chord closes) are beyond three primes.
+    assert!(coefficient_bits(&expected, last) > 93, "{}", coefficient_bits(&expected, last));
+    let hint = displacements(&points);
+    let certified = certify_rows(ncols, &rows, Some(&hint)).unwrap();
+    assert_eq!(
+        certified.proof,
+        Proof::KernelCertified { prime: ModP::PRIME, kernel: 2, primes: vec![ModP::PRIME] }
+    );
+    assert_eq!(certified.proof.name(), "kernel");
+    assert_eq!(certified.rank, expected.rank);
+    let circuits: Vec<Option<Vec<usize>>> = expected
+        .outcomes
+        .iter()
+        .map(|o| o.combination().map(|c| c.iter().map(|(id, _)| *id).collect()))
+        .collect();
+    assert_eq!(certified.circuits, circuits);
+    // The wheel's circuit is every bar before its last; the chord's, the half wheel it closes.
+    assert_eq!(certified.circuits[last - 1].as_ref().map(Vec::len), Some(last - 1));
+    assert!(certified.circuits[last].as_ref().is_some_and(|c| c.len() > 20 && c.len() < last - 1));
+    // Without the hint the same dependency is lifted through many primes: still exact.
+    let lifted = certify_rows(ncols, &rows, None).unwrap();
+    assert!(
+        matches!(lifted.proof, Proof::MultiModularCertified { ref primes } if primes.len() > 3)
+    );
+    assert_eq!(lifted.circuits, circuits);
+}
+
+#[test]
+fn a_flexible_circuit_is_not_certified_by_the_displacements() {
+    // Four collinear-free points: bars 01, 12, 23, 30 (a four-bar linkage, flexible) and 02 —
+    // rigid now — then 13: redundant, circuit = all five bars (K4). Then a separate bar pair
+    // 45, 45' (the same bar twice: its circuit is one bar, lifted with one prime).
+    let points: Vec<(BigRational, BigRational)> =
+        [(0, 0), (7, 1), (8, 6), (1, 5), (20, 3), (25, 9)]
+            .iter()
+            .map(|&(x, y)| (int(x), int(y)))
+            .collect();
+    let edges = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2), (1, 3), (4, 5), (4, 5)];
+    let rows = rigidity_rows(&points, &edges);
+    let hint = displacements(&points);
+    let certified = certify_rows(12, &rows, Some(&hint)).unwrap();
+    // Both dependencies have small coefficients: one prime, no kernel certificate needed.
+    assert_eq!(certified.proof, Proof::ModularCertified { prime: ModP::PRIME });
+    assert_eq!(certified.circuits[5], Some(vec![0, 1, 2, 3, 4]));
+    assert_eq!(certified.circuits[7], Some(vec![6]));
+    // A hint whose vectors the rows do not annihilate proves nothing: a dilation changes
+    // every bar. The large circuit of a wheel is then lifted through further primes.
+    let (points, edges) = wheel_with_chord(12, 9);
+    let rows = rigidity_rows(&points, &edges);
+    let mut dilation = displacements(&points);
+    dilation.vectors =
+        vec![points.iter().flat_map(|(x, y)| [x.clone(), y.clone()]).collect::<Vec<_>>()];
+    let certified = certify_rows(2 * points.len(), &rows, Some(&dilation)).unwrap();
+    assert!(
+        matches!(certified.proof, Proof::MultiModularCertified { .. }),
+        "{:?}",
+        certified.proof
+    );
+    let expected = reference(2 * points.len(), &rows);
+    assert_eq!(certified.rank, expected.rank);
 }
 
 #[test]
