@@ -605,7 +605,7 @@ pub(crate) fn finish_clusters<F>(
     for e in lonely {
         let constraints = system
             .constraint_indices()
-            .filter(|c| system.constraint(*c).shape.entities() == vec![e])
+            .filter(|c| system.constraint(*c).signature.entities() == vec![e])
             .collect();
         out.push(Cluster { entities: vec![e], constraints, grounded: false });
     }

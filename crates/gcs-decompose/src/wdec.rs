@@ -29,7 +29,7 @@
 use std::collections::HashMap;
 
 use gcs_jacobian::relation_row;
-use gcs_model::{ConstraintIdx, ConstraintKind, Dim, EntityIdx, EntityKind, Shape, System};
+use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, Signature, System};
 use gcs_rank::{Echelon, Field};
 
 use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
@@ -442,8 +442,8 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 if e.rank() - base == target {
                     break 'pairs;
                 }
-                for (kind, shape) in relations(system, a, b) {
-                    let Some(row) = relation_row(system, layout, kind, shape, &self.witness) else {
+                for signature in relations(system, a, b) {
+                    let Some(row) = relation_row(system, layout, signature, &self.witness) else {
                         continue;
                     };
                     if e.insert(row.clone()).is_independent() {
@@ -462,28 +462,13 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     }
 }
 
-/// The metric relations that can stand between two entities in a boundary.
-fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<(ConstraintKind, Shape)> {
-    use ConstraintKind::{Angle, Distance};
-    use EntityKind as K;
-    let (ka, kb) = (system.entity(a).kind(), system.entity(b).kind());
-    let three = system.dim() == Dim::Three;
-    match (ka, kb) {
-        (K::Point, K::Point) => vec![(Distance, Shape::PointPoint(a, b))],
-        (K::Point, K::Line) => vec![(Distance, Shape::PointLine { point: a, line: b })],
-        (K::Line, K::Point) => vec![(Distance, Shape::PointLine { point: b, line: a })],
-        (K::Point, K::Plane) => vec![(Distance, Shape::PointPlane { point: a, plane: b })],
-        (K::Plane, K::Point) => vec![(Distance, Shape::PointPlane { point: b, plane: a })],
-        (K::Line, K::Line) => {
-            vec![(Angle, Shape::LineLine(a, b)), (Distance, Shape::LineLine(a, b))]
-        }
-        (K::Plane, K::Plane) => {
-            vec![(Angle, Shape::PlanePlane(a, b)), (Distance, Shape::PlanePlane(a, b))]
-        }
-        (K::Line, K::Plane) if three => vec![(Angle, Shape::LinePlane { line: a, plane: b })],
-        (K::Plane, K::Line) if three => vec![(Angle, Shape::LinePlane { line: b, plane: a })],
-        _ => Vec::new(),
-    }
+/// The metric relations that can stand between two entities in a boundary: the angles and
+/// distances the constraint table has between their classes.
+fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<Signature> {
+    [ConstraintKind::Angle, ConstraintKind::Distance]
+        .into_iter()
+        .filter_map(|kind| system.relation(kind, &[a, b]))
+        .collect()
 }
 
 /// Whether `e` of the subsystem `m` is on its boundary: bound by a group outside `m` (the

@@ -179,3 +179,86 @@ fn trivial_motions_of_single_entities() {
         assert_eq!((a.trivial_motions, a.dof), (trivial, 0), "{dim}D segment");
     }
 }
+
+/// Every row of the constraint table, found by asking the resolver about every tuple of
+/// entity kinds in both dimensions (so that a row added later is covered without editing this
+/// test): at a generated witness, the constraint alone contributes exactly its DOC rows, all
+/// independent. A distance between 2D lines or planes needs them parallel: a `Parallel`
+/// constraint comes first there, and counts too.
+#[test]
+fn every_row_the_resolver_accepts_removes_its_doc() {
+    use gcs_model::number::int;
+    use gcs_model::{ConstraintKind, Dim, EntityIdx, EntityKind, Signature, SystemBuilder};
+    let mut seen = std::collections::BTreeSet::new();
+    for dim in [Dim::Two, Dim::Three] {
+        let kinds: Vec<EntityKind> =
+            EntityKind::ALL.into_iter().filter(|k| k.exists_in(dim)).collect();
+        for kind in ConstraintKind::ALL {
+            let arity = kind.fields().len();
+            let mut tuples: Vec<Vec<EntityKind>> = vec![Vec::new()];
+            for _ in 0..arity {
+                tuples = tuples
+                    .into_iter()
+                    .flat_map(|t| {
+                        kinds.iter().map(move |k| {
+                            let mut t = t.clone();
+                            t.push(*k);
+                            t
+                        })
+                    })
+                    .collect();
+            }
+            for tuple in tuples {
+                let fake: Vec<EntityIdx> = (0..arity as u32).map(EntityIdx).collect();
+                let Ok((signature, _)) = Signature::resolve(dim, kind, &fake, &tuple) else {
+                    continue;
+                };
+                let name: String = format!("{signature:?}")
+                    .chars()
+                    .take_while(char::is_ascii_alphanumeric)
+                    .collect();
+                seen.insert(format!("{dim} {name}"));
+                // Fresh entities of those kinds, at distinct integer positions.
+                let mut b = SystemBuilder::new("row", dim);
+                let n = dim.coords();
+                let mut next = 0i64;
+                let mut at = |k: i64| -> Vec<_> {
+                    next += 1;
+                    (0..n as i64).map(|i| int((next * 7 + i * 3 + k) % 11 - 5 + i)).collect()
+                };
+                let mut ids = Vec::new();
+                for (i, k) in tuple.iter().enumerate() {
+                    let id = format!("e{i}");
+                    let made = match k {
+                        EntityKind::Point => b.point(&id, Some(at(0))),
+                        EntityKind::Line => b.line(&id, Some([at(1), at(2)])),
+                        EntityKind::Segment => {
+                            b.point(&format!("{id}a"), Some(at(3))).unwrap();
+                            b.point(&format!("{id}b"), Some(at(4))).unwrap();
+                            b.segment(&id, &format!("{id}a"), &format!("{id}b"))
+                        }
+                        EntityKind::Circle => b.circle(&id, Some(at(5)), Some(int(2))),
+                        EntityKind::Plane => b.plane(&id, Some([at(6), at(7)])),
+                        EntityKind::Sphere => b.sphere(&id, Some(at(8)), Some(int(3))),
+                    };
+                    made.unwrap_or_else(|e| panic!("{e}"));
+                    ids.push(id);
+                }
+                let args: Vec<&str> = ids.iter().map(String::as_str).collect();
+                if matches!(signature, Signature::DistanceLineLine(..) if dim == Dim::Two)
+                    || matches!(signature, Signature::DistancePlanePlane(..))
+                {
+                    b.constraint(ConstraintKind::Parallel, "parallel", &args, None).unwrap();
+                }
+                b.constraint(kind, "c", &args, None).unwrap_or_else(|e| panic!("{e}"));
+                let s = b.build();
+                let a = analyze(&s, &AnalysisOptions { clusters: false, ..Default::default() })
+                    .unwrap_or_else(|e| panic!("{dim} {signature:?}: {e}"));
+                assert!(a.redundant.is_empty(), "{dim} {signature:?}: {:?}", a.redundant);
+                assert_eq!(a.rank, a.internal_equations + s.doc_sum(), "{dim} {signature:?}");
+            }
+        }
+    }
+    // Every row of the table in docs/format.md, 2D and 3D (a new row adds to the count).
+    assert!(seen.len() >= 43, "{} rows: {seen:?}", seen.len());
+}

@@ -82,6 +82,32 @@ impl<F: Field> Dual<F> {
     }
 }
 
+/// Real functions, for measures (square roots, angles) in `f64`.
+impl Dual<f64> {
+    /// `f(self)`, with `df` the derivative of `f`.
+    pub fn map(&self, f: impl Fn(f64) -> f64, df: impl Fn(f64) -> f64) -> Self {
+        let d = df(self.value);
+        Dual { value: f(self.value), grad: self.grad.iter().map(|g| g * d).collect() }
+    }
+
+    /// `self / other`.
+    pub fn over(&self, other: &Self) -> Self {
+        let (a, b) = (self.value, other.value);
+        let mut d = Dual::combine(&(1.0 / b), self, &(a / (b * b)), other);
+        d.value = a / b;
+        d
+    }
+
+    /// The angle of the vector `(x, y)`, `atan2(y, x)`, in radians.
+    pub fn atan2(y: &Self, x: &Self) -> Self {
+        let r2 = x.value * x.value + y.value * y.value;
+        let scale = if r2 > 0.0 { 1.0 / r2 } else { 0.0 };
+        let mut d = Dual::combine(&(x.value * scale), y, &(y.value * scale), x);
+        d.value = y.value.atan2(x.value);
+        d
+    }
+}
+
 fn zip_grad<F: Field>(a: &[F], b: &[F], f: impl Fn(&F, &F) -> F) -> Vec<F> {
     let n = a.len().max(b.len());
     let zero = F::zero();

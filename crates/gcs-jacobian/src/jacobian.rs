@@ -3,9 +3,10 @@
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{Field, SparseRow};
 
-use crate::equations::{self, Local};
+use crate::laws;
 use crate::layout::Layout;
 use crate::plan::{Plan, grad_row};
+use crate::views::Local;
 
 /// What a row of the Jacobian comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -57,7 +58,7 @@ pub fn assemble<F: Field>(
             continue;
         }
         let local = Local::new(system, layout, &[e], witness);
-        for r in equations::internal_rows(repr, local.coords(e)) {
+        for r in repr.internal_equations(local.coords(e)) {
             rows.push(grad_row(&r, Some(&local.cols)));
             owners.push(RowOwner::Internal(e));
         }
@@ -66,9 +67,9 @@ pub fn assemble<F: Field>(
         let c = system.constraint(ci);
         let base = system.constraint_base_entities(ci);
         let local = Local::new(system, layout, &base, witness);
-        let cand = equations::candidates(system, c, cp.variant, &local, sketch);
+        let law = laws::law(c.signature, cp.variant, &local, sketch, false);
         for &k in &cp.rows {
-            if let Some(r) = cand.rows.get(k) {
+            if let Some(r) = law.rows.get(k) {
                 rows.push(grad_row(r, Some(&local.cols)));
                 owners.push(RowOwner::Constraint(ci));
             }
@@ -78,32 +79,23 @@ pub fn assemble<F: Field>(
 }
 
 /// The Jacobian row of a metric relation that is not a constraint of the system (a *virtual*
-/// constraint, such as the boundary of a rigid subsystem: witness paper §3.2): `kind` is
-/// `Distance` or `Angle`, `shape` the entities it binds, evaluated at `witness` (one value per
-/// column, in `F`). `None` when the relation does not apply there (a distance between lines
-/// that are not parallel, a kind that is not metric).
+/// constraint, such as the boundary of a rigid subsystem: witness paper §3.2): `signature` is
+/// a distance or an angle between entities of the system ([`System::relation`]), evaluated at
+/// `witness` (one value per column, in `F`). `None` when the relation does not apply there (a
+/// distance between lines that are not parallel, a relation that is not metric).
+///
+/// [`System::relation`]: gcs_model::System::relation
 pub fn relation_row<F: Field>(
     system: &System,
     layout: &Layout,
-    kind: gcs_model::ConstraintKind,
-    shape: gcs_model::Shape,
+    signature: gcs_model::Signature,
     witness: &[F],
 ) -> Option<SparseRow<F>> {
-    use gcs_model::{Constraint, ConstraintKind, Shape};
-    if !matches!(kind, ConstraintKind::Distance | ConstraintKind::Angle) {
+    if !signature.is_metric() {
         return None;
     }
-    let c = Constraint {
-        id: String::new(),
-        kind,
-        args: shape.entities(),
-        shape,
-        value: None,
-        doc: 1,
-        position: None,
-    };
     let mut base = Vec::new();
-    for e in shape.entities() {
+    for e in signature.entities() {
         for b in system.base_entities(e) {
             if !base.contains(&b) {
                 base.push(b);
@@ -111,18 +103,11 @@ pub fn relation_row<F: Field>(
         }
     }
     let local = Local::new(system, layout, &base, witness);
-    let mut variant = 0;
-    if kind == ConstraintKind::Distance
-        && matches!(shape, Shape::LineLine(..) | Shape::PlanePlane(..))
-    {
-        let parallel = equations::parallel_at(system, shape, &local, &|x: &F| x.is_zero());
-        if equations::variants(system, &c) == 2 {
-            variant = usize::from(parallel);
-        } else if !parallel {
-            return None;
-        }
-    }
-    let none = |_: EntityIdx| None;
-    let cand = equations::candidates(system, &c, variant, &local, &none);
-    cand.rows.first().map(|r| grad_row(r, Some(&local.cols)))
+    let variants = |v| laws::law(signature, v, &local, &|_| None, false);
+    let variant = match laws::parallel(signature, &local, &|x: &F| x.is_zero()) {
+        Some(parallel) if variants(0).variants == 2 => usize::from(parallel),
+        Some(false) => return None,
+        Some(true) | None => 0,
+    };
+    variants(variant).rows.first().map(|r| grad_row(r, Some(&local.cols)))
 }

@@ -1,92 +1,11 @@
-//! The unknowns: how each entity is represented by coordinates (the columns of the Jacobian).
-//!
-//! | entity | coordinates | internal rows | DOF |
-//! |---|---|---|---|
-//! | 2D point | `x, y` | – | 2 |
-//! | 3D point | `x, y, z` | – | 3 |
-//! | 2D line | homogeneous `a, b, c` (`a·x + b·y + c = 0`) | normalisation | 2 |
-//! | 3D line | Plücker `d, m` (direction, moment `m = p × d`) | Plücker relation `d·m = 0`, normalisation | 4 |
-//! | circle | `cx, cy, r` | – | 3 |
-//! | plane | homogeneous `a, b, c, d` (`a·x + b·y + c·z + d = 0`) | normalisation | 3 |
-//! | sphere | `cx, cy, cz, r` | – | 4 |
-//! | segment | none: the line through its two points | – | 0 |
-//!
-//! Homogeneous coordinates keep everything rational (a line through two rational points, a
-//! plane through a rational point with a rational normal) where a unit normal would need a
-//! square root. Their scale is a gauge freedom, removed by one linear normalisation row per
-//! entity whose gradient is the witness coordinates themselves (`x0 · x = |x0|²`, satisfied by
-//! the witness, transversal to the scaling direction `x0` since `x0 · x0 > 0`). Every equation
-//! is homogeneous in a homogeneous entity's coordinates, so the scaling direction is in the
-//! kernel of every constraint row at a solution and the normalisation row removes exactly it:
-//! the kernel of the Jacobian is then exactly the real infinitesimal motions.
+//! The unknowns: the columns of the Jacobian, entity by entity ([`crate::repr`] says how
+//! each kind is represented).
 
 use std::ops::Range;
 
-use gcs_model::{Dim, EntityIdx, EntityKind, System};
+use gcs_model::{Dim, EntityIdx, System};
 
-/// How an entity is represented.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Repr {
-    /// `x, y`.
-    Point2,
-    /// `x, y, z`.
-    Point3,
-    /// Homogeneous `a, b, c`.
-    Line2,
-    /// Plücker `d, m`.
-    Line3,
-    /// `cx, cy, r`.
-    Circle,
-    /// Homogeneous `a, b, c, d`.
-    Plane,
-    /// `cx, cy, cz, r`.
-    Sphere,
-}
-
-impl Repr {
-    /// The representation of an entity kind in a dimension; `None` for segments.
-    pub fn of(kind: EntityKind, dim: Dim) -> Option<Repr> {
-        match (kind, dim) {
-            (EntityKind::Point, Dim::Two) => Some(Repr::Point2),
-            (EntityKind::Point, Dim::Three) => Some(Repr::Point3),
-            (EntityKind::Line, Dim::Two) => Some(Repr::Line2),
-            (EntityKind::Line, Dim::Three) => Some(Repr::Line3),
-            (EntityKind::Circle, _) => Some(Repr::Circle),
-            (EntityKind::Plane, _) => Some(Repr::Plane),
-            (EntityKind::Sphere, _) => Some(Repr::Sphere),
-            (EntityKind::Segment, _) => None,
-        }
-    }
-
-    /// Number of coordinates (columns).
-    pub fn coords(self) -> usize {
-        match self {
-            Repr::Point2 => 2,
-            Repr::Point3 | Repr::Line2 | Repr::Circle => 3,
-            Repr::Plane | Repr::Sphere => 4,
-            Repr::Line3 => 6,
-        }
-    }
-
-    /// Number of entity-internal rows (normalisation, Plücker relation).
-    pub fn internal_rows(self) -> usize {
-        match self {
-            Repr::Line2 | Repr::Plane => 1,
-            Repr::Line3 => 2,
-            _ => 0,
-        }
-    }
-
-    /// Whether the coordinates are homogeneous (defined up to a nonzero factor).
-    pub fn homogeneous(self) -> bool {
-        matches!(self, Repr::Line2 | Repr::Line3 | Repr::Plane)
-    }
-
-    /// Degrees of freedom: coordinates minus internal rows.
-    pub fn dof(self) -> usize {
-        self.coords() - self.internal_rows()
-    }
-}
+use crate::repr::Repr;
 
 /// The columns of the Jacobian: each entity with degrees of freedom owns a contiguous range,
 /// in entity order.

@@ -9,21 +9,7 @@ use gcs_model::{Dim, System};
 use gcs_rank::Field;
 
 use crate::error::JacobianError;
-use crate::layout::{Layout, Repr};
-
-fn cross<F: Field>(a: &[F; 3], b: &[F]) -> [F; 3] {
-    [
-        a[1].mul(&b[2]).sub(&a[2].mul(&b[1])),
-        a[2].mul(&b[0]).sub(&a[0].mul(&b[2])),
-        a[0].mul(&b[1]).sub(&a[1].mul(&b[0])),
-    ]
-}
-
-fn unit<F: Field>(i: usize) -> [F; 3] {
-    let mut u = [F::zero(), F::zero(), F::zero()];
-    u[i] = F::one();
-    u
-}
+use crate::layout::Layout;
 
 /// The generators of the displacements as dense vectors over the columns of `layout`, at
 /// `witness`: 3 in 2D (x, y translations; rotation about the origin), 6 in 3D (x, y, z
@@ -44,8 +30,9 @@ pub fn generators<F: Field>(
         let cols = layout.columns(e);
         let x = &witness[cols.clone()];
         for (g, column) in t.iter_mut().enumerate() {
-            let vel = velocity(repr, x, g);
-            let vel = if repr.homogeneous() { project(x, vel)? } else { vel };
+            let vel = repr.velocity(x, g).ok_or_else(|| {
+                JacobianError::NotAWitness("homogeneous coordinates of zero norm".into())
+            })?;
             for (c, v) in cols.clone().zip(vel) {
                 column[c] = v;
             }
@@ -53,72 +40,4 @@ pub fn generators<F: Field>(
     }
     debug_assert!(system.dim() == Dim::Two || k == 6);
     Ok(t)
-}
-
-/// The velocity of coordinates `x` of representation `repr` under generator `g`.
-fn velocity<F: Field>(repr: Repr, x: &[F], g: usize) -> Vec<F> {
-    let z = F::zero;
-    match repr {
-        Repr::Point2 | Repr::Circle => {
-            let mut v = match g {
-                0 => vec![F::one(), z()],
-                1 => vec![z(), F::one()],
-                _ => vec![x[1].neg(), x[0].clone()],
-            };
-            if repr == Repr::Circle {
-                v.push(z());
-            }
-            v
-        }
-        Repr::Line2 => match g {
-            // ċ = −n·t; (ȧ, ḃ) = ω (−b, a).
-            0 => vec![z(), z(), x[0].neg()],
-            1 => vec![z(), z(), x[1].neg()],
-            _ => vec![x[1].neg(), x[0].clone(), z()],
-        },
-        Repr::Point3 | Repr::Sphere => {
-            let mut v: Vec<F> =
-                if g < 3 { unit::<F>(g).to_vec() } else { cross(&unit(g - 3), &x[0..3]).to_vec() };
-            if repr == Repr::Sphere {
-                v.push(z());
-            }
-            v
-        }
-        Repr::Plane => {
-            // ṅ = ω × n, δ̇ = −n·t.
-            if g < 3 {
-                vec![z(), z(), z(), x[g].neg()]
-            } else {
-                let mut v = cross(&unit(g - 3), &x[0..3]).to_vec();
-                v.push(z());
-                v
-            }
-        }
-        Repr::Line3 => {
-            // ḋ = ω × d, ṁ = ω × m + t × d.
-            let (d, m) = (&x[0..3], &x[3..6]);
-            if g < 3 {
-                let mut v = vec![z(), z(), z()];
-                v.extend(cross(&unit(g), d));
-                v
-            } else {
-                let w = unit(g - 3);
-                let mut v = cross(&w, d).to_vec();
-                v.extend(cross(&w, m));
-                v
-            }
-        }
-    }
-}
-
-/// `v − (v·x / x·x) x`: the same motion with the gauge (scaling) component chosen so that the
-/// normalisation `x0·x = |x0|²` is preserved.
-fn project<F: Field>(x: &[F], v: Vec<F>) -> Result<Vec<F>, JacobianError> {
-    let dot = |a: &[F], b: &[F]| a.iter().zip(b).fold(F::zero(), |acc, (p, q)| acc.add(&p.mul(q)));
-    let xx = dot(x, x);
-    let inv = xx
-        .inv()
-        .ok_or_else(|| JacobianError::NotAWitness("homogeneous coordinates of zero norm".into()))?;
-    let s = dot(&v, x).mul(&inv);
-    Ok(v.iter().zip(x).map(|(vi, xi)| vi.sub(&s.mul(xi))).collect())
 }

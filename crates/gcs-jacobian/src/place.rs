@@ -29,9 +29,11 @@ use gcs_model::rng::SplitMix64;
 use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
 
 use crate::dual::Dual;
-use crate::equations::{self, Local};
-use crate::layout::{Layout, Repr};
+use crate::laws;
+use crate::layout::Layout;
 use crate::qla::{self, Affine, Q};
+use crate::repr::{Draw, Snap};
+use crate::views::Local;
 
 /// How to place.
 #[derive(Clone, Debug)]
@@ -90,29 +92,16 @@ pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64
     }
     let scale = if scale > 0.0 { scale } else { 10.0 };
     let mut pref = vec![Q::ZERO; layout.ncols()];
-    let n = system.dim().coords();
     for e in system.entity_indices() {
         let Some(repr) = layout.repr(e) else { continue };
         let cols = layout.columns(e);
         let s = crate::sketch::sketch_coords_in::<Q>(system, e).unwrap_or_else(|| {
-            let mut rnd = |k: usize| -> Vec<Q> {
-                (0..k).map(|_| qla::approx(scale * (2.0 * rng.unit_f64() - 1.0), 1000)).collect()
-            };
-            match repr {
-                Repr::Point2 | Repr::Point3 => rnd(n),
-                Repr::Line2 => {
-                    let (p, q) = (rnd(2), rnd(2));
-                    let l = crate::sketch::line2_through(&p, &q);
-                    if l.iter().all(Q::is_zero) { vec![Q::ONE, Q::ZERO, Q::ZERO] } else { l }
-                }
-                Repr::Line3 => crate::sketch::line3_through(&rnd(3), &rnd(3)),
-                Repr::Plane => crate::sketch::plane_through(&rnd(3), &rnd(3)),
-                Repr::Circle | Repr::Sphere => {
-                    let mut c = rnd(n);
-                    c.push(qla::approx(scale * (0.1 + 0.3 * rng.unit_f64()), 1000));
-                    c
-                }
-            }
+            repr.random(&mut |draw| match draw {
+                Draw::Position(k) => (0..k)
+                    .map(|_| qla::approx(scale * (2.0 * rng.unit_f64() - 1.0), 1000))
+                    .collect(),
+                Draw::Length => vec![qla::approx(scale * (0.1 + 0.3 * rng.unit_f64()), 1000)],
+            })
         });
         for (col, v) in cols.zip(s) {
             pref[col] = v;
@@ -185,16 +174,19 @@ impl Placer<'_> {
     fn choose_variants(&mut self) {
         for ci in self.system.constraint_indices() {
             let c = self.system.constraint(ci);
-            let nv = equations::variants(self.system, c);
-            if nv < 2 || !is_exact_kind(c.kind) {
+            if !is_exact_kind(c.kind) {
                 continue;
             }
             let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.pref);
             let none = |_: EntityIdx| None;
+            let nv = laws::law(c.signature, 0, &local, &none, false).variants;
+            if nv < 2 {
+                continue;
+            }
             let best = (0..nv)
                 .map(|v| {
-                    let cand = equations::candidates(self.system, c, v, &local, &none);
-                    let r: f64 = cand.rows.iter().map(|r| qla::to_f64(&r.value).abs()).sum();
+                    let law = laws::law(c.signature, v, &local, &none, false);
+                    let r: f64 = law.rows.iter().map(|r| qla::to_f64(&r.value).abs()).sum();
                     (r, v)
                 })
                 .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a });
@@ -260,11 +252,7 @@ impl Placer<'_> {
                 last_failure = Some(PlaceFailure { entity: e, constraints: ready });
             }
         }
-        if self
-            .placed
-            .iter()
-            .zip(system.entities())
-            .all(|(p, ent)| *p || Repr::of(ent.kind(), system.dim()).is_none())
+        if self.placed.iter().zip(system.entities()).all(|(p, ent)| *p || ent.kind().is_composite())
         {
             Ok(())
         } else {
@@ -314,7 +302,7 @@ impl Placer<'_> {
         self.current = Some(e);
         let cols = self.layout.columns(e);
         let n = cols.len();
-        let homogeneous = self.layout.repr(e).is_some_and(Repr::homogeneous);
+        let homogeneous = self.layout.repr(e).is_some_and(|r| r.homogeneous());
         let pref: Vec<Q> = self.pref[cols.clone()].to_vec();
         // Linearise every equation at the preference, and at a shifted point to tell linear
         // equations from quadratic ones.
@@ -350,17 +338,15 @@ impl Placer<'_> {
                 }
             }
         }
-        if self.layout.repr(e) == Some(Repr::Line3) {
-            // The Plücker relation d·m = 0 is ¼(|d + m|² − |d − m|²).
-            let unit = |i: usize, j: usize, sj: i64| -> (Vec<Q>, Q) {
-                let mut g = vec![Q::ZERO; 6];
-                g[i] = Q::ONE;
-                g[j] = Q::from(sj);
-                (g, Q::ZERO)
+        // Quadratic internal relations (the Plücker relation of a 3D line).
+        for (p, m) in self.layout.repr(e).map(|r| r.internal_quadrics()).unwrap_or_default() {
+            let map = |rows: Vec<Vec<i64>>| AffineMap {
+                rows: rows
+                    .into_iter()
+                    .map(|r| (r.into_iter().map(Q::from).collect(), Q::ZERO))
+                    .collect(),
             };
-            let plus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, 1)).collect() };
-            let minus = AffineMap { rows: (0..3).map(|i| unit(i, i + 3, -1)).collect() };
-            quads.push((plus, minus));
+            quads.push((map(p), map(m)));
         }
         let Some(space) = qla::solve(n, &linear) else { return false };
         // A free line or plane gets a normal of rational length (a Pythagorean direction near
@@ -369,7 +355,8 @@ impl Placer<'_> {
         // A free endpoint of a segment whose other end is placed goes at a rational distance
         // from it (a rational unit direction): tangencies and equal lengths involving the
         // segment then have rational solutions.
-        if matches!(repr, Some(Repr::Point2 | Repr::Point3)) && space.basis.len() == n {
+        let snap = repr.map_or(Snap::Nothing, |r| r.snap());
+        if snap == Snap::Direction && space.basis.len() == n {
             let placed_partner =
                 self.partners[e.index()].iter().copied().find(|o| self.placed[o.index()]);
             if let Some(o) = placed_partner {
@@ -382,7 +369,7 @@ impl Placer<'_> {
                 }
             }
         }
-        if matches!(repr, Some(Repr::Line2 | Repr::Plane)) && normal_is_free(&space, n) {
+        if snap == Snap::Normal && normal_is_free(&space, n) {
             let rows = self.rational_normal(&pref, n);
             let mut with = linear.clone();
             with.extend(rows.iter().cloned());
@@ -400,7 +387,7 @@ impl Placer<'_> {
             self.solve_quadrics(n, &linear, &quads, &pref, homogeneous)
         };
         let Some(x) = chosen else { return false };
-        if repr.is_some_and(|r| degenerate(r, &x)) {
+        if repr.is_some_and(|r| r.degenerate(&x)) {
             return false;
         }
         // A segment must keep two distinct points.
@@ -422,12 +409,10 @@ impl Placer<'_> {
                 let none = |_: EntityIdx| None;
                 let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
                 let c = self.system.constraint(ci);
-                let cand = if c.kind == ConstraintKind::Fix {
-                    equations::candidates(self.system, c, self.variant[ci.index()], &local, &sketch)
-                } else {
-                    equations::candidates(self.system, c, self.variant[ci.index()], &local, &none)
-                };
-                cand.rows.iter().all(|r| r.value.is_zero())
+                let sketch: &laws::SketchFn<'_, Q> =
+                    if c.kind == ConstraintKind::Fix { &sketch } else { &none };
+                let law = laws::law(c.signature, self.variant[ci.index()], &local, sketch, false);
+                law.rows.iter().all(|r| r.value.is_zero())
             });
         if !ok {
             for (col, v) in cols.zip(old) {
@@ -455,8 +440,8 @@ impl Placer<'_> {
             }
             let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
             let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
-            let cand = equations::candidates(self.system, c, variant, &local, &sketch);
-            cand.rows.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
+            let law = laws::law(c.signature, variant, &local, &sketch, false);
+            law.rows.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
         };
         let f0 = at(pref);
         let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
@@ -484,7 +469,8 @@ impl Placer<'_> {
                 self.coords[col] = v.clone();
             }
             let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
-            equations::split(self.system, c, variant, &local).map(|(p, m)| {
+            let none = |_: EntityIdx| None;
+            laws::law(c.signature, variant, &local, &none, true).split.map(|(p, m)| {
                 let conv = |ds: &[Dual<Q>]| -> Vec<(Q, Vec<Q>)> {
                     ds.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
                 };
@@ -596,7 +582,7 @@ impl Placer<'_> {
                 }
                 let x = self.choose(&sub, pref, homogeneous)?;
                 let repr = self.layout.repr(self.current?);
-                if repr.is_some_and(|r| degenerate(r, &x)) {
+                if repr.is_some_and(|r| r.degenerate(&x)) {
                     continue;
                 }
                 if rest.iter().all(|(p2, m2)| p2.norm2(&x) == m2.norm2(&x)) {
@@ -733,19 +719,6 @@ fn parallel_to(u: &[Q], n: usize, origin: Option<&[Q]>) -> Vec<(Vec<Q>, Q)> {
             .max_by(|a, b| qla::to_f64(&u[*a]).abs().total_cmp(&qla::to_f64(&u[*b]).abs()))
             .unwrap_or(2);
         (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
-    }
-}
-
-/// Whether coordinates describe a degenerate entity: a line or plane without normal or
-/// direction, a circle or sphere of radius zero.
-fn degenerate(repr: Repr, x: &[Q]) -> bool {
-    let zero = |xs: &[Q]| xs.iter().all(Q::is_zero);
-    match repr {
-        Repr::Line2 => zero(&x[0..2]),
-        Repr::Line3 | Repr::Plane => zero(&x[0..3]),
-        Repr::Circle => x[2].is_zero(),
-        Repr::Sphere => x[3].is_zero(),
-        Repr::Point2 | Repr::Point3 => false,
     }
 }
 

@@ -6,13 +6,14 @@
 //! it: every backend sees the same equations, which is what lets a modular rank be certified
 //! against the rational rows.
 
-use gcs_model::{ConstraintIdx, ConstraintKind, Shape, System};
+use gcs_model::{ConstraintIdx, System};
 use gcs_rank::{Echelon, EchelonOptions, Field, SparseRow};
 
 use crate::dual::Dual;
-use crate::equations::{self, Local};
 use crate::error::JacobianError;
+use crate::laws;
 use crate::layout::Layout;
+use crate::views::Local;
 
 /// The branch and the kept equations of one constraint.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -81,37 +82,31 @@ pub(crate) fn plan_with<F: Field>(
         let local = Local::new(system, layout, &base, witness);
         // Metric distances between lines or planes need them parallel (2D lines, planes) or
         // choose their formula (3D lines).
-        let mut variant = None;
-        if c.kind == ConstraintKind::Distance
-            && matches!(c.shape, Shape::LineLine(..) | Shape::PlanePlane(..))
-        {
-            let parallel = equations::parallel_at(system, c.shape, &local, zero);
-            if equations::variants(system, c) == 2 {
-                variant = Some(usize::from(parallel));
-            } else if !parallel {
-                return Ok(Err(Unsatisfied::NotParallel(ci)));
-            } else {
-                variant = Some(0);
-            }
-        }
-        let variant = match variant {
-            Some(v) => v,
+        let first = laws::law(c.signature, 0, &local, sketch, false);
+        let variant = match laws::parallel(c.signature, &local, zero) {
+            Some(parallel) if first.variants == 2 => usize::from(parallel),
+            Some(false) => return Ok(Err(Unsatisfied::NotParallel(ci))),
+            Some(true) => 0,
             None => {
-                let mut found = None;
-                for v in 0..equations::variants(system, c) {
-                    let cand = equations::candidates(system, c, v, &local, sketch);
-                    if !cand.exact || cand.rows.iter().all(|r| zero(&r.value)) {
-                        found = Some(v);
-                        break;
-                    }
-                }
+                let holds =
+                    |law: &laws::Law<F>| law.metric || law.rows.iter().all(|r| zero(&r.value));
+                let found = if holds(&first) {
+                    Some(0)
+                } else {
+                    (1..first.variants)
+                        .find(|&v| holds(&laws::law(c.signature, v, &local, sketch, false)))
+                };
                 match found {
                     Some(v) => v,
                     None => return Ok(Err(Unsatisfied::Constraint(ci))),
                 }
             }
         };
-        let cand = equations::candidates(system, c, variant, &local, sketch);
+        let cand = if variant == 0 {
+            first
+        } else {
+            laws::law(c.signature, variant, &local, sketch, false)
+        };
         out.push(select(layout, &base, &local, &cand.rows, c.doc, options.clone()));
         out.last_mut().expect("just pushed").variant = variant;
     }
@@ -138,7 +133,7 @@ fn select<F: Field>(
     // Internal rows of the local entities, over local variables.
     for &e in base {
         if let Some(repr) = layout.repr(e) {
-            for r in equations::internal_rows(repr, local.coords(e)) {
+            for r in repr.internal_equations(local.coords(e)) {
                 ech.insert(grad_row(&r, None));
             }
         }

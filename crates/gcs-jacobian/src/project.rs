@@ -1,59 +1,66 @@
 //! The last resort: a numerical projection onto the constraints (Levenberg–Marquardt from the
-//! sketch), when no rational witness can be constructed. The result is only approximately a
-//! witness; every report made at it says so, and only the float backend is honest there.
+//! sketch, [`gcs_rank::levenberg_marquardt`]), when no rational witness can be constructed.
+//! The result is only approximately a witness; every report made at it says so, and only the
+//! float backend is honest there.
 
 use gcs_model::{ConstraintIdx, EntityIdx, System};
-use nalgebra::{DMatrix, DVector};
+use gcs_rank::{LmOptions, Residuals, SparseRow, levenberg_marquardt};
 
-use crate::equations::{self, Local};
-use crate::layout::{Layout, Repr};
+use crate::laws;
+use crate::layout::Layout;
+use crate::views::Local;
 
 /// Dense projections beyond this many unknowns are not attempted (they would take too long
 /// and too much memory: the normal equations are dense).
 pub(crate) const MAX_UNKNOWNS: usize = 3_000;
 
-/// The residuals of every parameter-free constraint (and of the Plücker relations) at `x`, with
-/// their gradients, as a dense system.
-fn residuals(
-    system: &System,
-    layout: &Layout,
-    x: &[f64],
-    variants: &[usize],
-    sketch: &dyn Fn(EntityIdx) -> Option<Vec<f64>>,
-) -> (DVector<f64>, DMatrix<f64>) {
-    let n = layout.ncols();
-    let mut values: Vec<f64> = Vec::new();
-    let mut rows: Vec<Vec<(usize, f64)>> = Vec::new();
-    for ci in system.constraint_indices() {
-        let c = system.constraint(ci);
-        if c.kind.is_metric() {
-            continue;
-        }
-        let base = system.constraint_base_entities(ci);
-        let local = Local::new(system, layout, &base, x);
-        let cand = equations::candidates(system, c, variants[ci.index()], &local, sketch);
-        for r in cand.rows {
-            values.push(r.value);
-            rows.push(r.grad.iter().enumerate().map(|(i, g)| (local.cols[i], *g)).collect());
-        }
+/// The residuals of every parameter-free constraint, and the internal relations (the Plücker
+/// relations) but not the normalisations: the projection moves homogeneous coordinates freely.
+struct ParameterFree<'s> {
+    system: &'s System,
+    layout: &'s Layout,
+    variants: Vec<usize>,
+}
+
+impl Residuals for ParameterFree<'_> {
+    fn unknowns(&self) -> usize {
+        self.layout.ncols()
     }
-    for e in system.entity_indices() {
-        if layout.repr(e) == Some(Repr::Line3) {
-            let local = Local::new(system, layout, &[e], x);
-            let rel = equations::internal_rows(Repr::Line3, local.coords(e));
-            if let Some(r) = rel.first() {
-                values.push(r.value);
-                rows.push(r.grad.iter().enumerate().map(|(i, g)| (local.cols[i], *g)).collect());
+
+    fn evaluate(&self, x: &[f64]) -> (Vec<f64>, Vec<SparseRow<f64>>) {
+        let (system, layout) = (self.system, self.layout);
+        let sketch = |e: EntityIdx| crate::sketch::sketch_coords_in::<f64>(system, e);
+        let mut values = Vec::new();
+        let mut rows = Vec::new();
+        let mut push = |r: &crate::dual::Dual<f64>, cols: &[usize]| {
+            values.push(r.value);
+            rows.push(SparseRow::from_entries(
+                r.grad.iter().enumerate().map(|(i, g)| (cols[i], *g)).collect(),
+            ));
+        };
+        for ci in system.constraint_indices() {
+            let c = system.constraint(ci);
+            if c.kind.is_metric() {
+                continue;
+            }
+            let base = system.constraint_base_entities(ci);
+            let local = Local::new(system, layout, &base, x);
+            let law = laws::law(c.signature, self.variants[ci.index()], &local, &sketch, false);
+            for r in &law.rows {
+                push(r, &local.cols);
             }
         }
-    }
-    let mut j = DMatrix::zeros(values.len(), n);
-    for (i, row) in rows.iter().enumerate() {
-        for &(c, g) in row {
-            j[(i, c)] += g;
+        for e in system.entity_indices() {
+            let Some(repr) = layout.repr(e) else { continue };
+            if repr.internal_rows() > usize::from(repr.homogeneous()) {
+                let local = Local::new(system, layout, &[e], x);
+                if let Some(r) = repr.internal_equations(local.coords(e)).first() {
+                    push(r, &local.cols);
+                }
+            }
         }
+        (values, rows)
     }
-    (DVector::from_vec(values), j)
 }
 
 /// Projects `start` onto the parameter-free constraints by damped Gauss–Newton
@@ -65,10 +72,6 @@ pub(crate) fn project(
     start: &[f64],
     scale: f64,
 ) -> Option<Vec<f64>> {
-    let n = layout.ncols();
-    if n > MAX_UNKNOWNS {
-        return None;
-    }
     // Tangency branches from the starting point.
     let none = |_: EntityIdx| None;
     let variants: Vec<usize> = system
@@ -77,52 +80,21 @@ pub(crate) fn project(
             let c = system.constraint(ci);
             let base = system.constraint_base_entities(ci);
             let local = Local::new(system, layout, &base, start);
-            (0..equations::variants(system, c))
+            (0..laws::law(c.signature, 0, &local, &none, false).variants)
                 .map(|v| {
-                    let cand = equations::candidates(system, c, v, &local, &none);
-                    (cand.rows.iter().map(|r| r.value.abs()).sum::<f64>(), v)
+                    let law = laws::law(c.signature, v, &local, &none, false);
+                    (law.rows.iter().map(|r| r.value.abs()).sum::<f64>(), v)
                 })
                 .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a })
                 .1
         })
         .collect();
-    let sketch = |e: EntityIdx| crate::sketch::sketch_coords_in::<f64>(system, e);
-    let tol = 1e-12 * scale.max(1.0).powi(2);
-    let mut x = DVector::from_column_slice(start);
-    let mut lambda = 1e-3;
-    let (mut r, mut j) = residuals(system, layout, x.as_slice(), &variants, &sketch);
-    let mut cost = r.norm_squared();
-    for _ in 0..200 {
-        if r.amax() <= tol {
-            return x.iter().all(|v| v.is_finite()).then(|| x.as_slice().to_vec());
-        }
-        let jt = j.transpose();
-        let g = &jt * &r;
-        let mut h = &jt * &j;
-        let diag: Vec<f64> = (0..n).map(|i| h[(i, i)]).collect();
-        for (i, d) in diag.iter().enumerate() {
-            h[(i, i)] += lambda * d.max(1e-12);
-        }
-        let Some(chol) = h.cholesky() else {
-            lambda *= 10.0;
-            continue;
-        };
-        let step = chol.solve(&(-g));
-        let candidate = &x + &step;
-        let (r2, j2) = residuals(system, layout, candidate.as_slice(), &variants, &sketch);
-        let cost2 = r2.norm_squared();
-        if cost2 < cost {
-            x = candidate;
-            r = r2;
-            j = j2;
-            cost = cost2;
-            lambda = (lambda / 3.0).max(1e-12);
-        } else {
-            lambda *= 4.0;
-            if lambda > 1e12 {
-                break;
-            }
-        }
-    }
-    (r.amax() <= tol && x.iter().all(|v| v.is_finite())).then(|| x.as_slice().to_vec())
+    let options = LmOptions {
+        tolerance: 1e-12 * scale.max(1.0).powi(2),
+        max_unknowns: MAX_UNKNOWNS,
+        ..LmOptions::default()
+    };
+    let outcome =
+        levenberg_marquardt(&ParameterFree { system, layout, variants }, start, &options)?;
+    outcome.converged.then_some(outcome.x)
 }

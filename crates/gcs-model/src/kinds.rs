@@ -1,8 +1,9 @@
-//! The closed vocabularies of the model: dimensions, entity kinds, constraint kinds, and the
-//! degree-of-freedom (DOF) and degree-of-constraint (DOC) tables of the format
-//! (`docs/format.md` §1).
+//! The closed vocabularies of the model: dimensions and constraint kinds (the entity kinds and
+//! their DOF table are in [`crate::entity`], the DOC table in [`crate::signature`]).
 
 use std::fmt;
+
+pub use crate::entity::{EntityClass, EntityKind};
 
 /// The dimension of the space a system lives in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -44,94 +45,6 @@ impl Dim {
 impl fmt::Display for Dim {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}D", self.coords())
-    }
-}
-
-/// The kind of a geometric entity.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum EntityKind {
-    /// A point.
-    Point,
-    /// An infinite line.
-    Line,
-    /// The line through two existing points; it has no degree of freedom of its own.
-    Segment,
-    /// A circle of variable centre and radius (2D).
-    Circle,
-    /// A plane (3D).
-    Plane,
-    /// A sphere of variable centre and radius (3D).
-    Sphere,
-}
-
-impl EntityKind {
-    /// Every entity kind, in the order of the format's table.
-    pub const ALL: [EntityKind; 6] = [
-        EntityKind::Point,
-        EntityKind::Line,
-        EntityKind::Segment,
-        EntityKind::Circle,
-        EntityKind::Plane,
-        EntityKind::Sphere,
-    ];
-
-    /// The variant name used in model files (`Point`, `Line`, …).
-    pub fn name(self) -> &'static str {
-        match self {
-            EntityKind::Point => "Point",
-            EntityKind::Line => "Line",
-            EntityKind::Segment => "Segment",
-            EntityKind::Circle => "Circle",
-            EntityKind::Plane => "Plane",
-            EntityKind::Sphere => "Sphere",
-        }
-    }
-
-    /// Whether the kind exists in dimension `dim` (circles are planar, planes and spheres
-    /// spatial).
-    pub fn exists_in(self, dim: Dim) -> bool {
-        match self {
-            EntityKind::Point | EntityKind::Line | EntityKind::Segment => true,
-            EntityKind::Circle => dim == Dim::Two,
-            EntityKind::Plane | EntityKind::Sphere => dim == Dim::Three,
-        }
-    }
-
-    /// Degrees of freedom of one entity of this kind (format §1, table "Entities").
-    ///
-    /// Returns 0 for a kind that does not exist in `dim`.
-    pub fn dof(self, dim: Dim) -> usize {
-        if !self.exists_in(dim) {
-            return 0;
-        }
-        match (self, dim) {
-            (EntityKind::Point, d) => d.coords(),
-            (EntityKind::Line, Dim::Two) => 2,
-            (EntityKind::Line, Dim::Three) => 4,
-            (EntityKind::Segment, _) => 0,
-            (EntityKind::Circle, _) => 3,
-            (EntityKind::Plane, _) => 3,
-            (EntityKind::Sphere, _) => 4,
-        }
-    }
-
-    /// Whether the kind is line-like: a line or a segment. Every constraint that takes a line
-    /// also takes a segment.
-    pub fn is_line_like(self) -> bool {
-        matches!(self, EntityKind::Line | EntityKind::Segment)
-    }
-}
-
-impl fmt::Display for EntityKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            EntityKind::Point => "point",
-            EntityKind::Line => "line",
-            EntityKind::Segment => "segment",
-            EntityKind::Circle => "circle",
-            EntityKind::Plane => "plane",
-            EntityKind::Sphere => "sphere",
-        })
     }
 }
 
@@ -210,24 +123,57 @@ impl ConstraintKind {
     /// Whether the constraint carries a metric value (a dimension in the CAD sense). Metric
     /// constraints need no special witness: their values are read off it.
     pub fn is_metric(self) -> bool {
-        matches!(self, ConstraintKind::Distance | ConstraintKind::Angle | ConstraintKind::Radius)
+        use ConstraintKind as K;
+        match self {
+            K::Distance | K::Angle | K::Radius => true,
+            K::Coincident
+            | K::Parallel
+            | K::Perpendicular
+            | K::Incident
+            | K::Tangent
+            | K::EqualLength
+            | K::Midpoint
+            | K::Symmetric
+            | K::Horizontal
+            | K::Vertical
+            | K::Fix => false,
+        }
     }
 
     /// Whether the constraint is absolute: not invariant under displacements.
     pub fn is_absolute(self) -> bool {
-        matches!(self, ConstraintKind::Horizontal | ConstraintKind::Vertical | ConstraintKind::Fix)
+        use ConstraintKind as K;
+        match self {
+            K::Horizontal | K::Vertical | K::Fix => true,
+            K::Coincident
+            | K::Distance
+            | K::Angle
+            | K::Parallel
+            | K::Perpendicular
+            | K::Incident
+            | K::Tangent
+            | K::Radius
+            | K::EqualLength
+            | K::Midpoint
+            | K::Symmetric => false,
+        }
     }
 
     /// The names of the entity fields the constraint takes, in order.
     pub fn fields(self) -> &'static [&'static str] {
+        use ConstraintKind as K;
         match self {
-            ConstraintKind::Radius
-            | ConstraintKind::Horizontal
-            | ConstraintKind::Vertical
-            | ConstraintKind::Fix => &["a"],
-            ConstraintKind::Midpoint => &["point", "segment"],
-            ConstraintKind::Symmetric => &["a", "b", "axis"],
-            _ => &["a", "b"],
+            K::Radius | K::Horizontal | K::Vertical | K::Fix => &["a"],
+            K::Midpoint => &["point", "segment"],
+            K::Symmetric => &["a", "b", "axis"],
+            K::Coincident
+            | K::Distance
+            | K::Angle
+            | K::Parallel
+            | K::Perpendicular
+            | K::Incident
+            | K::Tangent
+            | K::EqualLength => &["a", "b"],
         }
     }
 }

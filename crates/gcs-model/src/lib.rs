@@ -44,6 +44,7 @@
 //! constraint) are those of the flow paper (Jermann, Neveu, Trombettoni, §2.3) and the survey's
 //! Definitions 3 and 4.
 
+pub mod entity;
 pub mod error;
 pub mod generate;
 pub mod kinds;
@@ -51,14 +52,15 @@ mod locate;
 pub mod number;
 mod read;
 pub mod rng;
-mod signature;
+pub mod signature;
 pub mod system;
 mod write;
 
+pub use entity::{EntityClass, EntityKind, Geometry};
 pub use error::{ModelError, ModelErrorKind, Position};
-pub use kinds::{ConstraintKind, Dim, EntityKind};
+pub use kinds::{ConstraintKind, Dim};
 pub use num_rational::BigRational;
+pub use signature::Signature;
 pub use system::{
-    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Geometry, Item, Shape, System,
-    SystemBuilder,
+    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, Shape, System, SystemBuilder,
 };

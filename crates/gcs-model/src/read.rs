@@ -3,6 +3,7 @@
 use num_rational::BigRational;
 use serde::Deserialize;
 
+use crate::entity::RawEntity;
 use crate::error::{ModelError, ModelErrorKind, Position};
 use crate::kinds::{ConstraintKind, Dim};
 use crate::locate::{ItemLoc, locate};
@@ -19,45 +20,6 @@ struct RawSystem {
     entities: Vec<RawEntity>,
     #[serde(default)]
     constraints: Vec<RawConstraint>,
-}
-
-#[derive(Deserialize)]
-#[serde(rename = "Entity", deny_unknown_fields)]
-enum RawEntity {
-    Point {
-        id: String,
-        #[serde(default)]
-        at: Option<Vec<Num>>,
-    },
-    Line {
-        id: String,
-        #[serde(default)]
-        at: Option<Vec<Vec<Num>>>,
-    },
-    Segment {
-        id: String,
-        from: String,
-        to: String,
-    },
-    Circle {
-        id: String,
-        #[serde(default)]
-        center: Option<Vec<Num>>,
-        #[serde(default)]
-        radius: Option<Num>,
-    },
-    Plane {
-        id: String,
-        #[serde(default)]
-        at: Option<Vec<Vec<Num>>>,
-    },
-    Sphere {
-        id: String,
-        #[serde(default)]
-        center: Option<Vec<Num>>,
-        #[serde(default)]
-        radius: Option<Num>,
-    },
 }
 
 #[derive(Deserialize)]
@@ -161,7 +123,7 @@ impl RawConstraint {
     }
 }
 
-fn number(
+pub(crate) fn number(
     item: &'static str,
     owner: &str,
     field: &'static str,
@@ -181,11 +143,19 @@ fn number(
     }
 }
 
-fn coords(owner: &str, field: &'static str, v: &[Num]) -> Result<Coords, ModelError> {
+pub(crate) fn read_coords(
+    owner: &str,
+    field: &'static str,
+    v: &[Num],
+) -> Result<Coords, ModelError> {
     v.iter().map(|n| number("entity", owner, field, n)).collect()
 }
 
-fn two_coords(owner: &str, field: &'static str, v: &[Vec<Num>]) -> Result<[Coords; 2], ModelError> {
+pub(crate) fn two_coords(
+    owner: &str,
+    field: &'static str,
+    v: &[Vec<Num>],
+) -> Result<[Coords; 2], ModelError> {
     if v.len() != 2 {
         return Err(ModelError::new(ModelErrorKind::WrongPositionCount {
             id: owner.to_owned(),
@@ -194,37 +164,13 @@ fn two_coords(owner: &str, field: &'static str, v: &[Vec<Num>]) -> Result<[Coord
             found: v.len(),
         }));
     }
-    Ok([coords(owner, field, &v[0])?, coords(owner, field, &v[1])?])
+    Ok([read_coords(owner, field, &v[0])?, read_coords(owner, field, &v[1])?])
 }
 
 fn add_entity(b: &mut SystemBuilder, raw: &RawEntity) -> Result<(), ModelError> {
-    match raw {
-        RawEntity::Point { id, at } => {
-            let at = at.as_deref().map(|v| coords(id, "at", v)).transpose()?;
-            b.point(id, at)?;
-        }
-        RawEntity::Line { id, at } => {
-            let at = at.as_deref().map(|v| two_coords(id, "at", v)).transpose()?;
-            b.line(id, at)?;
-        }
-        RawEntity::Segment { id, from, to } => {
-            b.segment(id, from, to)?;
-        }
-        RawEntity::Circle { id, center, radius } => {
-            let center = center.as_deref().map(|v| coords(id, "center", v)).transpose()?;
-            let radius = radius.as_ref().map(|r| number("entity", id, "radius", r)).transpose()?;
-            b.circle(id, center, radius)?;
-        }
-        RawEntity::Plane { id, at } => {
-            let at = at.as_deref().map(|v| two_coords(id, "at", v)).transpose()?;
-            b.plane(id, at)?;
-        }
-        RawEntity::Sphere { id, center, radius } => {
-            let center = center.as_deref().map(|v| coords(id, "center", v)).transpose()?;
-            let radius = radius.as_ref().map(|r| number("entity", id, "radius", r)).transpose()?;
-            b.sphere(id, center, radius)?;
-        }
-    }
+    let read = raw.read()?;
+    let parts: Vec<&str> = read.refs.iter().map(|(_, id)| *id).collect();
+    b.entity(read.id, read.geometry, &parts)?;
     Ok(())
 }
 

@@ -1,176 +1,410 @@
-//! The constraint table of the format: which entity kinds each constraint kind takes, in which
-//! dimension, and how many degrees of freedom it removes (DOC).
+//! The constraint table of the format: which entity classes each constraint kind takes, in which
+//! dimension, and how many degrees of freedom it removes (DOC) — one row per [`Signature`].
+//!
+//! A [`Signature`] is a constraint kind resolved against the classes of the entities it binds
+//! (argument order in the file does not matter where the roles differ: `Distance(a: line, b:
+//! point)` is [`Signature::DistancePointLine`]). Every layer that attaches something to a
+//! constraint — its equations, its rule in the structural methods — matches on it, without a
+//! catch-all arm, so that adding a row here makes the compiler list every place that must learn
+//! about it.
 
-use crate::kinds::{ConstraintKind, Dim, EntityKind};
+use crate::kinds::{ConstraintKind, Dim, EntityClass, EntityKind};
 use crate::system::{EntityIdx, Shape};
 
-/// Coarse entity classes of the table ("line" covers lines and segments).
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Class {
-    Point,
-    Line,
-    Plane,
-    Circle,
-    Sphere,
+/// A constraint kind resolved against the classes of its entities: one variant per row of the
+/// constraint table (format §1), with the entities in their roles. "Line" roles take lines and
+/// segments alike, "circle" roles every circle-like entity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Signature {
+    /// Two points at the same place (DOC: the dimension).
+    CoincidentPoints(EntityIdx, EntityIdx),
+    /// The distance between two points.
+    DistancePointPoint(EntityIdx, EntityIdx),
+    /// The distance from a point to a line.
+    DistancePointLine {
+        /// The point.
+        point: EntityIdx,
+        /// The line.
+        line: EntityIdx,
+    },
+    /// The distance from a point to a plane.
+    DistancePointPlane {
+        /// The point.
+        point: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// The distance between two lines: parallel lines in 2D, any lines in 3D.
+    DistanceLineLine(EntityIdx, EntityIdx),
+    /// The distance between two parallel planes.
+    DistancePlanePlane(EntityIdx, EntityIdx),
+    /// The angle between two lines.
+    AngleLineLine(EntityIdx, EntityIdx),
+    /// The angle between two planes.
+    AnglePlanePlane(EntityIdx, EntityIdx),
+    /// The angle between a line and a plane.
+    AngleLinePlane {
+        /// The line.
+        line: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// Two parallel lines (DOC 1 in 2D, 2 in 3D).
+    ParallelLineLine(EntityIdx, EntityIdx),
+    /// Two parallel planes (DOC 2).
+    ParallelPlanePlane(EntityIdx, EntityIdx),
+    /// A line parallel to a plane.
+    ParallelLinePlane {
+        /// The line.
+        line: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// Two perpendicular lines.
+    PerpendicularLineLine(EntityIdx, EntityIdx),
+    /// Two perpendicular planes.
+    PerpendicularPlanePlane(EntityIdx, EntityIdx),
+    /// A line perpendicular to a plane (DOC 2).
+    PerpendicularLinePlane {
+        /// The line.
+        line: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// A point on a line (DOC 1 in 2D, 2 in 3D).
+    IncidentPointLine {
+        /// The point.
+        point: EntityIdx,
+        /// The line.
+        line: EntityIdx,
+    },
+    /// A point on a plane.
+    IncidentPointPlane {
+        /// The point.
+        point: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// A point on a circle.
+    IncidentPointCircle {
+        /// The point.
+        point: EntityIdx,
+        /// The circle.
+        circle: EntityIdx,
+    },
+    /// A point on a sphere.
+    IncidentPointSphere {
+        /// The point.
+        point: EntityIdx,
+        /// The sphere.
+        sphere: EntityIdx,
+    },
+    /// A line in a plane (DOC 2).
+    IncidentLinePlane {
+        /// The line.
+        line: EntityIdx,
+        /// The plane.
+        plane: EntityIdx,
+    },
+    /// A line tangent to a circle.
+    TangentLineCircle {
+        /// The line.
+        line: EntityIdx,
+        /// The circle.
+        circle: EntityIdx,
+    },
+    /// Two tangent circles (externally or internally, as the witness has them).
+    TangentCircleCircle(EntityIdx, EntityIdx),
+    /// A plane tangent to a sphere.
+    TangentPlaneSphere {
+        /// The plane.
+        plane: EntityIdx,
+        /// The sphere.
+        sphere: EntityIdx,
+    },
+    /// Two tangent spheres.
+    TangentSphereSphere(EntityIdx, EntityIdx),
+    /// The radius of a circle or sphere.
+    Radius(EntityIdx),
+    /// Two segments of equal length.
+    EqualLength(EntityIdx, EntityIdx),
+    /// A point at the middle of a segment (DOC: the dimension).
+    Midpoint {
+        /// The point.
+        point: EntityIdx,
+        /// The segment.
+        segment: EntityIdx,
+    },
+    /// Two points symmetric about a line (2D, DOC 2).
+    Symmetric {
+        /// First point.
+        a: EntityIdx,
+        /// Second point.
+        b: EntityIdx,
+        /// The axis.
+        axis: EntityIdx,
+    },
+    /// A horizontal line (2D, absolute).
+    Horizontal(EntityIdx),
+    /// A vertical line (2D, absolute).
+    Vertical(EntityIdx),
+    /// An entity pinned at its sketch position (absolute; DOC: the entity's DOF).
+    Fix(EntityIdx),
 }
 
-fn class(kind: EntityKind) -> Class {
-    match kind {
-        EntityKind::Point => Class::Point,
-        EntityKind::Line | EntityKind::Segment => Class::Line,
-        EntityKind::Plane => Class::Plane,
-        EntityKind::Circle => Class::Circle,
-        EntityKind::Sphere => Class::Sphere,
+impl Signature {
+    /// The constraint kind.
+    pub fn kind(self) -> ConstraintKind {
+        use ConstraintKind as K;
+        use Signature as S;
+        match self {
+            S::CoincidentPoints(..) => K::Coincident,
+            S::DistancePointPoint(..)
+            | S::DistancePointLine { .. }
+            | S::DistancePointPlane { .. }
+            | S::DistanceLineLine(..)
+            | S::DistancePlanePlane(..) => K::Distance,
+            S::AngleLineLine(..) | S::AnglePlanePlane(..) | S::AngleLinePlane { .. } => K::Angle,
+            S::ParallelLineLine(..) | S::ParallelPlanePlane(..) | S::ParallelLinePlane { .. } => {
+                K::Parallel
+            }
+            S::PerpendicularLineLine(..)
+            | S::PerpendicularPlanePlane(..)
+            | S::PerpendicularLinePlane { .. } => K::Perpendicular,
+            S::IncidentPointLine { .. }
+            | S::IncidentPointPlane { .. }
+            | S::IncidentPointCircle { .. }
+            | S::IncidentPointSphere { .. }
+            | S::IncidentLinePlane { .. } => K::Incident,
+            S::TangentLineCircle { .. }
+            | S::TangentCircleCircle(..)
+            | S::TangentPlaneSphere { .. }
+            | S::TangentSphereSphere(..) => K::Tangent,
+            S::Radius(_) => K::Radius,
+            S::EqualLength(..) => K::EqualLength,
+            S::Midpoint { .. } => K::Midpoint,
+            S::Symmetric { .. } => K::Symmetric,
+            S::Horizontal(_) => K::Horizontal,
+            S::Vertical(_) => K::Vertical,
+            S::Fix(_) => K::Fix,
+        }
     }
-}
 
-/// Resolves the roles of a constraint's entities and its DOC.
-///
-/// `args` are the entities in field order, `kinds` their kinds. On a mismatch, returns a
-/// description of what the constraint takes in this dimension. For `Fix` the DOC returned is
-/// 0: it depends on the entity and is filled in by the caller.
-pub(crate) fn resolve(
-    dim: Dim,
-    kind: ConstraintKind,
-    args: &[EntityIdx],
-    kinds: &[EntityKind],
-) -> Result<(Shape, usize), &'static str> {
-    use Class as C;
-    use ConstraintKind as K;
-    let d2 = dim == Dim::Two;
-    let n = dim.coords();
-    let classes: Vec<Class> = kinds.iter().map(|k| class(*k)).collect();
-    // Pairs in either order: returns the arguments reordered to (x, y) roles.
-    let pair = |x: Class, y: Class| -> Option<(EntityIdx, EntityIdx)> {
-        match classes.as_slice() {
-            [a, b] if *a == x && *b == y => Some((args[0], args[1])),
-            [a, b] if *a == y && *b == x => Some((args[1], args[0])),
-            _ => None,
-        }
-    };
-    let single = |x: Class| -> Option<EntityIdx> {
-        match classes.as_slice() {
-            [a] if *a == x => Some(args[0]),
-            _ => None,
-        }
-    };
-    match kind {
-        K::Coincident => {
-            pair(C::Point, C::Point).map(|(a, b)| (Shape::PointPoint(a, b), n)).ok_or("two points")
-        }
-        K::Distance => {
-            let expected = if d2 {
-                "point–point, point–line or line–line (parallel lines)"
-            } else {
-                "point–point, point–line, point–plane, line–line or plane–plane (parallel planes)"
-            };
-            if let Some((a, b)) = pair(C::Point, C::Point) {
-                Ok((Shape::PointPoint(a, b), 1))
-            } else if let Some((point, line)) = pair(C::Point, C::Line) {
-                Ok((Shape::PointLine { point, line }, 1))
-            } else if let Some((point, plane)) = pair(C::Point, C::Plane) {
-                Ok((Shape::PointPlane { point, plane }, 1))
-            } else if let Some((a, b)) = pair(C::Line, C::Line) {
-                Ok((Shape::LineLine(a, b), 1))
-            } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
-                Ok((Shape::PlanePlane(a, b), 1))
-            } else {
-                Err(expected)
+    /// The entities bound, with their roles as classes ([`Shape`]).
+    pub fn shape(self) -> Shape {
+        use Signature as S;
+        match self {
+            S::CoincidentPoints(a, b) | S::DistancePointPoint(a, b) => Shape::PointPoint(a, b),
+            S::DistancePointLine { point, line } | S::IncidentPointLine { point, line } => {
+                Shape::PointLine { point, line }
             }
+            S::DistancePointPlane { point, plane } | S::IncidentPointPlane { point, plane } => {
+                Shape::PointPlane { point, plane }
+            }
+            S::DistanceLineLine(a, b)
+            | S::AngleLineLine(a, b)
+            | S::ParallelLineLine(a, b)
+            | S::PerpendicularLineLine(a, b) => Shape::LineLine(a, b),
+            S::DistancePlanePlane(a, b)
+            | S::AnglePlanePlane(a, b)
+            | S::ParallelPlanePlane(a, b)
+            | S::PerpendicularPlanePlane(a, b) => Shape::PlanePlane(a, b),
+            S::AngleLinePlane { line, plane }
+            | S::ParallelLinePlane { line, plane }
+            | S::PerpendicularLinePlane { line, plane }
+            | S::IncidentLinePlane { line, plane } => Shape::LinePlane { line, plane },
+            S::IncidentPointCircle { point, circle } => Shape::PointCircle { point, circle },
+            S::IncidentPointSphere { point, sphere } => Shape::PointSphere { point, sphere },
+            S::TangentLineCircle { line, circle } => Shape::LineCircle { line, circle },
+            S::TangentCircleCircle(a, b) => Shape::CircleCircle(a, b),
+            S::TangentPlaneSphere { plane, sphere } => Shape::PlaneSphere { plane, sphere },
+            S::TangentSphereSphere(a, b) => Shape::SphereSphere(a, b),
+            S::Radius(e) => Shape::Round(e),
+            S::EqualLength(a, b) => Shape::SegmentSegment(a, b),
+            S::Midpoint { point, segment } => Shape::PointSegment { point, segment },
+            S::Symmetric { a, b, axis } => Shape::Symmetric { a, b, axis },
+            S::Horizontal(e) | S::Vertical(e) => Shape::Line(e),
+            S::Fix(e) => Shape::Single(e),
         }
-        K::Angle | K::Parallel | K::Perpendicular => {
-            let expected =
-                if d2 { "two lines" } else { "line–line, line–plane or plane–plane" };
-            if let Some((a, b)) = pair(C::Line, C::Line) {
-                let doc = match (kind, d2) {
-                    (K::Parallel, false) => 2,
-                    _ => 1,
-                };
-                Ok((Shape::LineLine(a, b), doc))
-            } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
-                let doc = if kind == K::Parallel { 2 } else { 1 };
-                Ok((Shape::PlanePlane(a, b), doc))
-            } else if let Some((line, plane)) = pair(C::Line, C::Plane) {
-                let doc = if kind == K::Perpendicular { 2 } else { 1 };
-                Ok((Shape::LinePlane { line, plane }, doc))
-            } else {
-                Err(expected)
-            }
-        }
-        K::Incident => {
-            let expected = if d2 {
-                "point–line or point–circle"
-            } else {
-                "point–line, point–plane, point–sphere or line–plane"
-            };
-            if let Some((point, line)) = pair(C::Point, C::Line) {
-                Ok((Shape::PointLine { point, line }, if d2 { 1 } else { 2 }))
-            } else if let Some((point, plane)) = pair(C::Point, C::Plane) {
-                Ok((Shape::PointPlane { point, plane }, 1))
-            } else if let Some((point, circle)) = pair(C::Point, C::Circle) {
-                Ok((Shape::PointCircle { point, circle }, 1))
-            } else if let Some((point, sphere)) = pair(C::Point, C::Sphere) {
-                Ok((Shape::PointSphere { point, sphere }, 1))
-            } else if let Some((line, plane)) = pair(C::Line, C::Plane) {
-                Ok((Shape::LinePlane { line, plane }, 2))
-            } else {
-                Err(expected)
-            }
-        }
-        K::Tangent => {
-            let expected = if d2 {
-                "line–circle or circle–circle"
-            } else {
-                "plane–sphere or sphere–sphere"
-            };
-            if let Some((line, circle)) = pair(C::Line, C::Circle) {
-                Ok((Shape::LineCircle { line, circle }, 1))
-            } else if let Some((a, b)) = pair(C::Circle, C::Circle) {
-                Ok((Shape::CircleCircle(a, b), 1))
-            } else if let Some((plane, sphere)) = pair(C::Plane, C::Sphere) {
-                Ok((Shape::PlaneSphere { plane, sphere }, 1))
-            } else if let Some((a, b)) = pair(C::Sphere, C::Sphere) {
-                Ok((Shape::SphereSphere(a, b), 1))
-            } else {
-                Err(expected)
-            }
-        }
-        K::Radius => single(C::Circle)
-            .or_else(|| single(C::Sphere))
-            .map(|e| (Shape::Round(e), 1))
-            .ok_or(if d2 { "a circle" } else { "a sphere" }),
-        K::EqualLength => match kinds {
-            [EntityKind::Segment, EntityKind::Segment] => {
-                Ok((Shape::SegmentSegment(args[0], args[1]), 1))
-            }
-            _ => Err("two segments"),
-        },
-        K::Midpoint => match kinds {
-            [EntityKind::Point, EntityKind::Segment] => {
-                Ok((Shape::PointSegment { point: args[0], segment: args[1] }, n))
-            }
-            _ => Err("a point (field point) and a segment (field segment)"),
-        },
-        K::Symmetric => {
-            if !d2 {
-                return Err("two points and an axis line, in 2D only");
-            }
+    }
+
+    /// The entities bound, in role order.
+    pub fn entities(self) -> Vec<EntityIdx> {
+        self.shape().entities()
+    }
+
+    /// Whether the constraint carries a metric value (its kind's [`ConstraintKind::is_metric`]).
+    pub fn is_metric(self) -> bool {
+        self.kind().is_metric()
+    }
+
+    /// Whether the constraint is absolute: not invariant under displacements.
+    pub fn is_absolute(self) -> bool {
+        self.kind().is_absolute()
+    }
+
+    /// Resolves the roles of a constraint's entities and its DOC (format §1, table
+    /// "Constraints"): the row of the table that applies.
+    ///
+    /// `args` are the entities in field order ([`ConstraintKind::fields`]), `kinds` their kinds.
+    /// For `Fix` the DOC returned is 0: it is the DOF of the entity (and of a segment's points),
+    /// which the caller adds up.
+    ///
+    /// # Errors
+    /// A description of what the constraint takes in this dimension, when the kinds do not
+    /// fit any row.
+    pub fn resolve(
+        dim: Dim,
+        kind: ConstraintKind,
+        args: &[EntityIdx],
+        kinds: &[EntityKind],
+    ) -> Result<(Signature, usize), &'static str> {
+        use ConstraintKind as K;
+        use EntityClass as C;
+        use Signature as S;
+        let d2 = dim == Dim::Two;
+        let n = dim.coords();
+        let classes: Vec<EntityClass> = kinds.iter().map(|k| k.class()).collect();
+        // Pairs in either order: returns the arguments reordered to (x, y) roles.
+        let pair = |x: EntityClass, y: EntityClass| -> Option<(EntityIdx, EntityIdx)> {
             match classes.as_slice() {
-                [C::Point, C::Point, C::Line] => {
-                    Ok((Shape::Symmetric { a: args[0], b: args[1], axis: args[2] }, 2))
+                [a, b] if *a == x && *b == y => Some((args[0], args[1])),
+                [a, b] if *a == y && *b == x => Some((args[1], args[0])),
+                _ => None,
+            }
+        };
+        let single = |x: EntityClass| -> Option<EntityIdx> {
+            match classes.as_slice() {
+                [a] if *a == x => Some(args[0]),
+                _ => None,
+            }
+        };
+        match kind {
+            K::Coincident => pair(C::Point, C::Point)
+                .map(|(a, b)| (S::CoincidentPoints(a, b), n))
+                .ok_or("two points"),
+            K::Distance => {
+                let expected = if d2 {
+                    "point–point, point–line or line–line (parallel lines)"
+                } else {
+                    "point–point, point–line, point–plane, line–line or plane–plane (parallel \
+                     planes)"
+                };
+                if let Some((a, b)) = pair(C::Point, C::Point) {
+                    Ok((S::DistancePointPoint(a, b), 1))
+                } else if let Some((point, line)) = pair(C::Point, C::Line) {
+                    Ok((S::DistancePointLine { point, line }, 1))
+                } else if let Some((point, plane)) = pair(C::Point, C::Plane) {
+                    Ok((S::DistancePointPlane { point, plane }, 1))
+                } else if let Some((a, b)) = pair(C::Line, C::Line) {
+                    Ok((S::DistanceLineLine(a, b), 1))
+                } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
+                    Ok((S::DistancePlanePlane(a, b), 1))
+                } else {
+                    Err(expected)
                 }
-                _ => Err("two points (fields a, b) and a line or segment (field axis)"),
             }
-        }
-        K::Horizontal | K::Vertical => {
-            if !d2 {
-                return Err("a line or segment, in 2D only");
+            K::Angle | K::Parallel | K::Perpendicular => {
+                let expected =
+                    if d2 { "two lines" } else { "line–line, line–plane or plane–plane" };
+                if let Some((a, b)) = pair(C::Line, C::Line) {
+                    Ok(match kind {
+                        K::Angle => (S::AngleLineLine(a, b), 1),
+                        K::Parallel => (S::ParallelLineLine(a, b), if d2 { 1 } else { 2 }),
+                        _ => (S::PerpendicularLineLine(a, b), 1),
+                    })
+                } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
+                    Ok(match kind {
+                        K::Angle => (S::AnglePlanePlane(a, b), 1),
+                        K::Parallel => (S::ParallelPlanePlane(a, b), 2),
+                        _ => (S::PerpendicularPlanePlane(a, b), 1),
+                    })
+                } else if let Some((line, plane)) = pair(C::Line, C::Plane) {
+                    Ok(match kind {
+                        K::Angle => (S::AngleLinePlane { line, plane }, 1),
+                        K::Parallel => (S::ParallelLinePlane { line, plane }, 1),
+                        _ => (S::PerpendicularLinePlane { line, plane }, 2),
+                    })
+                } else {
+                    Err(expected)
+                }
             }
-            single(C::Line).map(|e| (Shape::Line(e), 1)).ok_or("a line or segment")
+            K::Incident => {
+                let expected = if d2 {
+                    "point–line or point–circle"
+                } else {
+                    "point–line, point–plane, point–sphere or line–plane"
+                };
+                if let Some((point, line)) = pair(C::Point, C::Line) {
+                    Ok((S::IncidentPointLine { point, line }, if d2 { 1 } else { 2 }))
+                } else if let Some((point, plane)) = pair(C::Point, C::Plane) {
+                    Ok((S::IncidentPointPlane { point, plane }, 1))
+                } else if let Some((point, circle)) = pair(C::Point, C::Circle) {
+                    Ok((S::IncidentPointCircle { point, circle }, 1))
+                } else if let Some((point, sphere)) = pair(C::Point, C::Sphere) {
+                    Ok((S::IncidentPointSphere { point, sphere }, 1))
+                } else if let Some((line, plane)) = pair(C::Line, C::Plane) {
+                    Ok((S::IncidentLinePlane { line, plane }, 2))
+                } else {
+                    Err(expected)
+                }
+            }
+            K::Tangent => {
+                let expected = if d2 {
+                    "line–circle or circle–circle"
+                } else {
+                    "plane–sphere or sphere–sphere"
+                };
+                if let Some((line, circle)) = pair(C::Line, C::Circle) {
+                    Ok((S::TangentLineCircle { line, circle }, 1))
+                } else if let Some((a, b)) = pair(C::Circle, C::Circle) {
+                    Ok((S::TangentCircleCircle(a, b), 1))
+                } else if let Some((plane, sphere)) = pair(C::Plane, C::Sphere) {
+                    Ok((S::TangentPlaneSphere { plane, sphere }, 1))
+                } else if let Some((a, b)) = pair(C::Sphere, C::Sphere) {
+                    Ok((S::TangentSphereSphere(a, b), 1))
+                } else {
+                    Err(expected)
+                }
+            }
+            K::Radius => single(C::Circle)
+                .or_else(|| single(C::Sphere))
+                .map(|e| (S::Radius(e), 1))
+                .ok_or(if d2 { "a circle" } else { "a sphere" }),
+            K::EqualLength => match kinds {
+                [EntityKind::Segment, EntityKind::Segment] => {
+                    Ok((S::EqualLength(args[0], args[1]), 1))
+                }
+                _ => Err("two segments"),
+            },
+            K::Midpoint => match kinds {
+                [EntityKind::Point, EntityKind::Segment] => {
+                    Ok((S::Midpoint { point: args[0], segment: args[1] }, n))
+                }
+                _ => Err("a point (field point) and a segment (field segment)"),
+            },
+            K::Symmetric => {
+                if !d2 {
+                    return Err("two points and an axis line, in 2D only");
+                }
+                match classes.as_slice() {
+                    [C::Point, C::Point, C::Line] => {
+                        Ok((S::Symmetric { a: args[0], b: args[1], axis: args[2] }, 2))
+                    }
+                    _ => Err("two points (fields a, b) and a line or segment (field axis)"),
+                }
+            }
+            K::Horizontal | K::Vertical => {
+                if !d2 {
+                    return Err("a line or segment, in 2D only");
+                }
+                let line = single(C::Line).ok_or("a line or segment")?;
+                Ok((if kind == K::Horizontal { S::Horizontal(line) } else { S::Vertical(line) }, 1))
+            }
+            K::Fix => match args {
+                [e] => Ok((S::Fix(*e), 0)),
+                _ => Err("one entity"),
+            },
         }
-        K::Fix => match args {
-            [e] => Ok((Shape::Single(*e), 0)),
-            _ => Err("one entity"),
-        },
     }
 }

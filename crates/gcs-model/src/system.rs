@@ -5,10 +5,12 @@ use std::collections::HashMap;
 use std::fmt;
 
 use num_rational::BigRational;
-use num_traits::{Signed, Zero};
+use num_traits::Signed;
 
+use crate::entity::{EntityKind, Geometry};
 use crate::error::{ModelError, ModelErrorKind, Position};
-use crate::kinds::{ConstraintKind, Dim, EntityKind};
+use crate::kinds::{ConstraintKind, Dim};
+use crate::signature::Signature;
 
 /// Index of an entity in [`System::entities`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -35,62 +37,6 @@ impl ConstraintIdx {
 /// A sketch position: one exact rational per coordinate.
 pub type Coords = Vec<BigRational>;
 
-/// An entity's kind with its sketch data (every sketch field is optional) or, for a segment,
-/// its two points.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Geometry {
-    /// A point.
-    Point {
-        /// Sketch position.
-        at: Option<Coords>,
-    },
-    /// An infinite line, sketched by two distinct points on it.
-    Line {
-        /// Two distinct points on the line.
-        at: Option<[Coords; 2]>,
-    },
-    /// The line through two point entities.
-    Segment {
-        /// First point.
-        from: EntityIdx,
-        /// Second point.
-        to: EntityIdx,
-    },
-    /// A circle (2D).
-    Circle {
-        /// Sketch centre.
-        center: Option<Coords>,
-        /// Sketch radius.
-        radius: Option<BigRational>,
-    },
-    /// A plane (3D), sketched by a point on it and a normal.
-    Plane {
-        /// `[point, normal]`.
-        at: Option<[Coords; 2]>,
-    },
-    /// A sphere (3D).
-    Sphere {
-        /// Sketch centre.
-        center: Option<Coords>,
-        /// Sketch radius.
-        radius: Option<BigRational>,
-    },
-}
-
-impl Geometry {
-    /// The entity kind.
-    pub fn kind(&self) -> EntityKind {
-        match self {
-            Geometry::Point { .. } => EntityKind::Point,
-            Geometry::Line { .. } => EntityKind::Line,
-            Geometry::Segment { .. } => EntityKind::Segment,
-            Geometry::Circle { .. } => EntityKind::Circle,
-            Geometry::Plane { .. } => EntityKind::Plane,
-            Geometry::Sphere { .. } => EntityKind::Sphere,
-        }
-    }
-}
-
 /// A geometric entity of a system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Entity {
@@ -108,18 +54,11 @@ impl Entity {
         self.geometry.kind()
     }
 
-    /// Whether every sketch field that defines its placement is given. A segment has a
-    /// position when both its points have one; the caller checks that through the system
+    /// Whether every sketch field that defines its placement is given. A composite entity has
+    /// a position when all its parts have one; the caller checks that through the system
     /// ([`System::has_position`]).
     fn has_own_position(&self) -> bool {
-        match &self.geometry {
-            Geometry::Point { at } => at.is_some(),
-            Geometry::Line { at } | Geometry::Plane { at } => at.is_some(),
-            Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
-                center.is_some() && radius.is_some()
-            }
-            Geometry::Segment { .. } => false,
-        }
+        self.geometry.has_own_position()
     }
 }
 
@@ -246,14 +185,21 @@ pub struct Constraint {
     pub kind: ConstraintKind,
     /// The entities in the order of the file's fields (`a`, `b`, `axis`; `point`, `segment`).
     pub args: Vec<EntityIdx>,
-    /// The entities with their roles resolved.
-    pub shape: Shape,
+    /// The row of the constraint table that applies, with the entities in their roles.
+    pub signature: Signature,
     /// The metric value (a length in model units or an angle in degrees), when written.
     pub value: Option<BigRational>,
     /// Degrees of freedom it removes in general (format §1, table "Constraints").
     pub doc: usize,
     /// Where the constraint is written, when it was read from a file.
     pub position: Option<Position>,
+}
+
+impl Constraint {
+    /// The entities bound, with their roles as classes.
+    pub fn shape(&self) -> Shape {
+        self.signature.shape()
+    }
 }
 
 /// Either kind of item an id can name.
@@ -343,7 +289,11 @@ impl System {
     pub fn segment_points(&self, idx: EntityIdx) -> Option<(EntityIdx, EntityIdx)> {
         match self.entity(idx).geometry {
             Geometry::Segment { from, to } => Some((from, to)),
-            _ => None,
+            Geometry::Point { .. }
+            | Geometry::Line { .. }
+            | Geometry::Circle { .. }
+            | Geometry::Plane { .. }
+            | Geometry::Sphere { .. } => None,
         }
     }
 
@@ -367,14 +317,23 @@ impl System {
         self.dof_sum() as i64 - self.doc_sum() as i64
     }
 
-    /// Whether an entity has a complete sketch position (a segment: both its points).
+    /// Whether an entity has a complete sketch position (a composite entity: all its parts).
     pub fn has_position(&self, idx: EntityIdx) -> bool {
-        match self.entity(idx).geometry {
-            Geometry::Segment { from, to } => {
-                self.entity(from).has_own_position() && self.entity(to).has_own_position()
-            }
-            _ => self.entity(idx).has_own_position(),
+        let e = self.entity(idx);
+        if e.kind().is_composite() {
+            e.geometry.parts().iter().all(|p| self.has_position(*p))
+        } else {
+            e.has_own_position()
         }
+    }
+
+    /// The row of the constraint table a constraint of `kind` on `args` (in the order of the
+    /// kind's fields) would have, `None` when the table has no such row: the relations that can
+    /// be stated between entities (the boundary of a rigid subsystem asks which distances and
+    /// angles apply).
+    pub fn relation(&self, kind: ConstraintKind, args: &[EntityIdx]) -> Option<Signature> {
+        let kinds: Vec<EntityKind> = args.iter().map(|e| self.entity(*e).kind()).collect();
+        Signature::resolve(self.dim, kind, args, &kinds).ok().map(|(s, _)| s)
     }
 
     /// Indices of all entities.
@@ -387,12 +346,23 @@ impl System {
         (0..self.constraints.len() as u32).map(ConstraintIdx)
     }
 
-    /// The entities that carry degrees of freedom of their own: every entity but segments.
-    /// Constraints on a segment act on its two points.
+    /// The entities with coordinates of their own that an entity stands for: itself, or for a
+    /// composite entity (a segment) the entities it is built on. Constraints on a composite
+    /// entity act on its parts.
     pub fn base_entities(&self, idx: EntityIdx) -> Vec<EntityIdx> {
-        match self.segment_points(idx) {
-            Some((a, b)) => vec![a, b],
-            None => vec![idx],
+        let e = self.entity(idx);
+        if e.kind().is_composite() {
+            let mut out = Vec::new();
+            for p in e.geometry.parts() {
+                for b in self.base_entities(p) {
+                    if !out.contains(&b) {
+                        out.push(b);
+                    }
+                }
+            }
+            out
+        } else {
+            vec![idx]
         }
     }
 
@@ -400,7 +370,7 @@ impl System {
     /// their points), without repetition, in first-use order.
     pub fn constraint_base_entities(&self, c: ConstraintIdx) -> Vec<EntityIdx> {
         let mut out = Vec::new();
-        for e in self.constraint(c).shape.entities() {
+        for e in self.constraint(c).signature.entities() {
             for b in self.base_entities(e) {
                 if !out.contains(&b) {
                     out.push(b);
@@ -495,38 +465,15 @@ impl SystemBuilder {
         Ok(())
     }
 
-    fn check_coords(&self, id: &str, field: &'static str, c: &Coords) -> Result<(), ModelError> {
-        let expected = self.system.dim.coords();
-        if c.len() != expected {
-            return Err(ModelError::new(ModelErrorKind::WrongCoordinateCount {
-                id: id.to_owned(),
-                field,
-                expected,
-                found: c.len(),
-                dim: self.system.dim,
-            }));
-        }
-        Ok(())
-    }
-
-    fn check_radius(&self, id: &str, r: &Option<BigRational>) -> Result<(), ModelError> {
-        match r {
-            Some(r) if r.is_negative() => Err(ModelError::new(ModelErrorKind::Negative {
-                item: "entity",
-                owner: id.to_owned(),
-                field: "radius",
-                value: crate::number::format_exact(r),
-            })),
-            Some(r) if r.is_zero() => Err(ModelError::new(ModelErrorKind::Degenerate {
-                id: id.to_owned(),
-                field: Some("radius"),
-                what: "radius 0: a circle or sphere of radius 0 is a point; use a Point".into(),
-            })),
-            _ => Ok(()),
-        }
-    }
-
-    fn push_entity(&mut self, id: &str, geometry: Geometry) -> Result<EntityIdx, ModelError> {
+    /// Adds an entity of any kind: checks its id, that its kind exists in the dimension, its
+    /// sketch fields, and for a composite kind its parts (already resolved indices; `names`
+    /// are their ids as written, for messages).
+    fn push_entity(
+        &mut self,
+        id: &str,
+        geometry: Geometry,
+        names: &[&str],
+    ) -> Result<EntityIdx, ModelError> {
         self.claim_id(id)?;
         let kind = geometry.kind();
         if !kind.exists_in(self.system.dim) {
@@ -536,69 +483,53 @@ impl SystemBuilder {
                 dim: self.system.dim,
             }));
         }
+        geometry.check(id, self.system.dim)?;
+        if kind.is_composite() {
+            let fields = kind.part_fields();
+            geometry.check_parts(id, fields, names, &self.system)?;
+        }
         let idx = EntityIdx(self.system.entities.len() as u32);
         self.system.entities.push(Entity { id: id.to_owned(), geometry, position: None });
         self.system.ids.insert(id.to_owned(), Item::Entity(idx));
         Ok(idx)
     }
 
+    /// Adds an entity given by its geometry. For a composite kind, `parts` are the ids of the
+    /// entities it is built on, in the order of [`EntityKind::part_fields`] (the geometry's own
+    /// references are replaced); for the others `parts` must be empty.
+    pub fn entity(
+        &mut self,
+        id: &str,
+        geometry: Geometry,
+        parts: &[&str],
+    ) -> Result<EntityIdx, ModelError> {
+        let fields = geometry.kind().part_fields();
+        let mut resolved = Vec::with_capacity(parts.len());
+        for (field, part) in fields.iter().zip(parts) {
+            resolved.push(self.resolve("entity", id, field, part)?);
+        }
+        let geometry = if resolved.len() == fields.len() && !fields.is_empty() {
+            geometry.with_parts(&resolved)
+        } else {
+            geometry
+        };
+        self.push_entity(id, geometry, parts)
+    }
+
     /// Adds a point.
     pub fn point(&mut self, id: &str, at: Option<Coords>) -> Result<EntityIdx, ModelError> {
-        if let Some(at) = &at {
-            self.check_coords(id, "at", at)?;
-        }
-        self.push_entity(id, Geometry::Point { at })
+        self.entity(id, Geometry::Point { at }, &[])
     }
 
     /// Adds an infinite line, sketched by two distinct points.
     pub fn line(&mut self, id: &str, at: Option<[Coords; 2]>) -> Result<EntityIdx, ModelError> {
-        if let Some([p, q]) = &at {
-            self.check_coords(id, "at", p)?;
-            self.check_coords(id, "at", q)?;
-            if p == q {
-                return Err(ModelError::new(ModelErrorKind::Degenerate {
-                    id: id.to_owned(),
-                    field: Some("at"),
-                    what: "the two points of the line coincide".into(),
-                }));
-            }
-        }
-        self.push_entity(id, Geometry::Line { at })
+        self.entity(id, Geometry::Line { at }, &[])
     }
 
     /// Adds a segment between two existing points.
     pub fn segment(&mut self, id: &str, from: &str, to: &str) -> Result<EntityIdx, ModelError> {
-        let f = self.resolve("entity", id, "from", from)?;
-        let t = self.resolve("entity", id, "to", to)?;
-        for ((field, e), name) in [("from", f), ("to", t)].into_iter().zip([from, to]) {
-            let found = self.system.entity(e).kind();
-            if found != EntityKind::Point {
-                return Err(ModelError::new(ModelErrorKind::SegmentEndpoint {
-                    id: id.to_owned(),
-                    field,
-                    entity: name.to_owned(),
-                    found,
-                }));
-            }
-        }
-        if f == t {
-            return Err(ModelError::new(ModelErrorKind::Degenerate {
-                id: id.to_owned(),
-                field: Some("to"),
-                what: format!("segment from \"{from}\" to itself"),
-            }));
-        }
-        if let (Geometry::Point { at: Some(p) }, Geometry::Point { at: Some(q) }) =
-            (&self.system.entity(f).geometry, &self.system.entity(t).geometry)
-            && p == q
-        {
-            return Err(ModelError::new(ModelErrorKind::Degenerate {
-                id: id.to_owned(),
-                field: None,
-                what: format!("its points \"{from}\" and \"{to}\" coincide in the sketch"),
-            }));
-        }
-        self.push_entity(id, Geometry::Segment { from: f, to: t })
+        let none = EntityIdx(u32::MAX);
+        self.entity(id, Geometry::Segment { from: none, to: none }, &[from, to])
     }
 
     /// Adds a circle (2D).
@@ -608,27 +539,12 @@ impl SystemBuilder {
         center: Option<Coords>,
         radius: Option<BigRational>,
     ) -> Result<EntityIdx, ModelError> {
-        if let Some(c) = &center {
-            self.check_coords(id, "center", c)?;
-        }
-        self.check_radius(id, &radius)?;
-        self.push_entity(id, Geometry::Circle { center, radius })
+        self.entity(id, Geometry::Circle { center, radius }, &[])
     }
 
     /// Adds a plane (3D), sketched by a point on it and a normal.
     pub fn plane(&mut self, id: &str, at: Option<[Coords; 2]>) -> Result<EntityIdx, ModelError> {
-        if let Some([p, n]) = &at {
-            self.check_coords(id, "at", p)?;
-            self.check_coords(id, "at", n)?;
-            if n.iter().all(Zero::is_zero) {
-                return Err(ModelError::new(ModelErrorKind::Degenerate {
-                    id: id.to_owned(),
-                    field: Some("at"),
-                    what: "the normal of the plane is zero".into(),
-                }));
-            }
-        }
-        self.push_entity(id, Geometry::Plane { at })
+        self.entity(id, Geometry::Plane { at }, &[])
     }
 
     /// Adds a sphere (3D).
@@ -638,11 +554,7 @@ impl SystemBuilder {
         center: Option<Coords>,
         radius: Option<BigRational>,
     ) -> Result<EntityIdx, ModelError> {
-        if let Some(c) = &center {
-            self.check_coords(id, "center", c)?;
-        }
-        self.check_radius(id, &radius)?;
-        self.push_entity(id, Geometry::Sphere { center, radius })
+        self.entity(id, Geometry::Sphere { center, radius }, &[])
     }
 
     fn resolve(
@@ -719,7 +631,7 @@ impl SystemBuilder {
         }
         let kinds: Vec<EntityKind> =
             resolved.iter().map(|e| self.system.entity(*e).kind()).collect();
-        let (shape, doc) = crate::signature::resolve(self.system.dim, kind, &resolved, &kinds)
+        let (signature, doc) = Signature::resolve(self.system.dim, kind, &resolved, &kinds)
             .map_err(|expected| {
                 let found = kinds.iter().map(|k| k.to_string()).collect::<Vec<_>>().join("–");
                 ModelError::new(ModelErrorKind::KindMismatch {
@@ -730,24 +642,24 @@ impl SystemBuilder {
                     dim: self.system.dim,
                 })
             })?;
-        let doc = match shape {
-            Shape::Single(e) => {
-                if !self.system.has_position(e) {
-                    return Err(ModelError::new(ModelErrorKind::FixWithoutPosition {
-                        id: id.to_owned(),
-                        entity: args[0].to_string(),
-                    }));
-                }
-                self.system.base_entities(e).iter().map(|b| self.system.entity_dof(*b)).sum()
+        // The DOC of `Fix` is the DOF it pins: the entity's, or its parts'.
+        let doc = if let Signature::Fix(e) = signature {
+            if !self.system.has_position(e) {
+                return Err(ModelError::new(ModelErrorKind::FixWithoutPosition {
+                    id: id.to_owned(),
+                    entity: args[0].to_string(),
+                }));
             }
-            _ => doc,
+            self.system.base_entities(e).iter().map(|b| self.system.entity_dof(*b)).sum()
+        } else {
+            doc
         };
         let idx = ConstraintIdx(self.system.constraints.len() as u32);
         self.system.constraints.push(Constraint {
             id: id.to_owned(),
             kind,
             args: resolved,
-            shape,
+            signature,
             value,
             doc,
             position: None,

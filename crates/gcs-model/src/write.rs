@@ -3,33 +3,9 @@
 
 use std::fmt::Write;
 
+use crate::entity::quote;
 use crate::number::format_exact;
-use crate::system::{Coords, Geometry, System};
-
-fn quote(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if c.is_control() => {
-                let _ = write!(out, "\\u{{{:x}}}", c as u32);
-            }
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
-}
-
-fn coords(c: &Coords) -> String {
-    let parts: Vec<String> = c.iter().map(format_exact).collect();
-    format!("[{}]", parts.join(", "))
-}
+use crate::system::{EntityIdx, System};
 
 impl System {
     /// Writes the system in the RON model format. Reading the text back with
@@ -50,38 +26,8 @@ impl System {
         let _ = writeln!(out, "    dim: {},", self.dim().coords());
         let _ = writeln!(out, "    entities: [");
         for e in self.entities() {
-            let id = quote(&e.id);
-            let body = match &e.geometry {
-                Geometry::Point { at } => match at {
-                    Some(at) => format!("Point(id: {id}, at: {})", coords(at)),
-                    None => format!("Point(id: {id})"),
-                },
-                Geometry::Line { at } | Geometry::Plane { at } => {
-                    let name = e.kind().name();
-                    match at {
-                        Some([p, q]) => {
-                            format!("{name}(id: {id}, at: [{}, {}])", coords(p), coords(q))
-                        }
-                        None => format!("{name}(id: {id})"),
-                    }
-                }
-                Geometry::Segment { from, to } => format!(
-                    "Segment(id: {id}, from: {}, to: {})",
-                    quote(&self.entity(*from).id),
-                    quote(&self.entity(*to).id)
-                ),
-                Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
-                    let mut s = format!("{}(id: {id}", e.kind().name());
-                    if let Some(c) = center {
-                        let _ = write!(s, ", center: {}", coords(c));
-                    }
-                    if let Some(r) = radius {
-                        let _ = write!(s, ", radius: {}", format_exact(r));
-                    }
-                    s.push(')');
-                    s
-                }
-            };
+            let name = |x: EntityIdx| self.entity(x).id.clone();
+            let body = e.geometry.to_ron(&e.id, &name);
             let _ = writeln!(out, "        {body},");
         }
         let _ = writeln!(out, "    ],");

@@ -44,8 +44,8 @@ fn same_model(a: &System, b: &System) {
     assert_eq!(a.constraints().len(), b.constraints().len());
     for (x, y) in a.constraints().iter().zip(b.constraints()) {
         assert_eq!(
-            (&x.id, x.kind, &x.args, x.shape, &x.value, x.doc),
-            (&y.id, y.kind, &y.args, y.shape, &y.value, y.doc)
+            (&x.id, x.kind, &x.args, x.signature, &x.value, x.doc),
+            (&y.id, y.kind, &y.args, y.signature, &y.value, y.doc)
         );
     }
 }
@@ -81,7 +81,7 @@ fn zoo_2d_doc_table() {
     // Roles are resolved whatever the argument order: Incident(a: circle, b: point).
     let oc = s.constraint(s.constraint_by_id("oc").unwrap());
     let (k, d) = (s.entity_by_id("k").unwrap(), s.entity_by_id("d").unwrap());
-    assert_eq!(oc.shape, Shape::PointCircle { point: d, circle: k });
+    assert_eq!(oc.shape(), Shape::PointCircle { point: d, circle: k });
     assert_eq!(oc.args, vec![k, d], "args keep the file's order");
     // A segment is the line through its points.
     let ab = s.entity_by_id("ab").unwrap();

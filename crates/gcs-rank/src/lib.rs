@@ -20,6 +20,8 @@
 //!   the lower bound, dependencies lifted by rational reconstruction and checked exactly prove
 //!   the upper bound), falling back to multi-modular lifting and then to rational elimination;
 //!   the [`Proof`] says which.
+//! - [`levenberg_marquardt`] minimises any system of [`Residuals`] (nonlinear least squares,
+//!   geometry-free): the witness projection of `gcs-jacobian` stands on it.
 //! - [`float_rank_qr`] is the batch numerical rank with faer's column-pivoted QR, the
 //!   "epsilon-heuristic" of §6 for witnesses that are only known approximately.
 //!
@@ -96,6 +98,7 @@ mod error;
 mod exact;
 mod field;
 mod float;
+mod lsq;
 mod modp;
 mod rank;
 mod rat;
@@ -111,6 +114,7 @@ pub use exact::{
 };
 pub use field::Field;
 pub use float::float_rank_qr;
+pub use lsq::{LmOptions, LmOutcome, Residuals, levenberg_marquardt};
 pub use modp::{ModP, ModPrime};
 pub use num_rational::BigRational;
 pub use rank::echelon_rank;

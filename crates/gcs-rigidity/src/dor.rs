@@ -101,7 +101,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use gcs_model::{ConstraintKind, Dim, EntityIdx, Geometry, Shape, System};
+use gcs_model::{Dim, EntityClass, EntityIdx, Signature, System};
 
 /// Computes the degree of rigidity of a set of entities of a system.
 ///
@@ -267,7 +267,7 @@ impl Facts {
         // Points: coincidence classes.
         let mut pparent: Vec<u32> = (0..n as u32).collect();
         for c in system.constraints() {
-            if let (ConstraintKind::Coincident, Shape::PointPoint(a, b)) = (c.kind, c.shape) {
+            if let Signature::CoincidentPoints(a, b) = c.signature {
                 let (ra, rb) = (plain_find(&mut pparent, a.0), plain_find(&mut pparent, b.0));
                 if ra != rb {
                     pparent[ra as usize] = rb;
@@ -276,38 +276,30 @@ impl Facts {
         }
         let mut point_class = vec![NONE; n];
         for e in system.entity_indices() {
-            if matches!(
-                system.entity(e).geometry,
-                Geometry::Point { .. } | Geometry::Circle { .. } | Geometry::Sphere { .. }
-            ) {
-                point_class[e.index()] = plain_find(&mut pparent, e.0);
+            // Circles and spheres count as their centres.
+            match system.entity(e).kind().class() {
+                EntityClass::Point | EntityClass::Circle | EntityClass::Sphere => {
+                    point_class[e.index()] = plain_find(&mut pparent, e.0);
+                }
+                EntityClass::Line | EntityClass::Plane => {}
             }
         }
         // Carriers: one per line and per segment, carrying point classes.
         let mut carrier = vec![NONE; n];
         let mut points_on: Vec<Vec<u32>> = Vec::new();
         for e in system.entity_indices() {
-            match system.entity(e).geometry {
-                Geometry::Line { .. } => {
-                    carrier[e.index()] = points_on.len() as u32;
-                    points_on.push(Vec::new());
-                }
-                Geometry::Segment { from, to } => {
-                    carrier[e.index()] = points_on.len() as u32;
-                    points_on.push(vec![point_class[from.index()], point_class[to.index()]]);
-                }
-                _ => {}
+            // One carrier per line-like entity, with the points it is built on.
+            if system.entity(e).kind().class() == EntityClass::Line {
+                carrier[e.index()] = points_on.len() as u32;
+                let parts = system.entity(e).geometry.parts();
+                points_on.push(parts.iter().map(|p| point_class[p.index()]).collect());
             }
         }
         for c in system.constraints() {
-            match (c.kind, c.shape) {
-                (ConstraintKind::Incident, Shape::PointLine { point, line }) => {
-                    points_on[carrier[line.index()] as usize].push(point_class[point.index()]);
-                }
-                (ConstraintKind::Midpoint, Shape::PointSegment { point, segment }) => {
-                    points_on[carrier[segment.index()] as usize].push(point_class[point.index()]);
-                }
-                _ => {}
+            if let Signature::IncidentPointLine { point, line: carried }
+            | Signature::Midpoint { point, segment: carried } = c.signature
+            {
+                points_on[carrier[carried.index()] as usize].push(point_class[point.index()]);
             }
         }
         let carriers = points_on.len();
@@ -369,7 +361,7 @@ impl Facts {
         // Directions: nodes 0..carriers for carriers, then one per plane, then "horizontal".
         let planes: Vec<EntityIdx> = system
             .entity_indices()
-            .filter(|&e| matches!(system.entity(e).geometry, Geometry::Plane { .. }))
+            .filter(|&e| system.entity(e).kind().class() == EntityClass::Plane)
             .collect();
         let plane_node: HashMap<u32, u32> =
             planes.iter().enumerate().map(|(i, p)| (p.0, (carriers + i) as u32)).collect();
@@ -382,50 +374,61 @@ impl Facts {
         let mut plane_lines: HashMap<u32, HashSet<u32>> = HashMap::new();
         for c in system.constraints() {
             let line_node = |e: EntityIdx| carrier[e.index()];
-            match (c.kind, c.shape) {
-                (ConstraintKind::Parallel, Shape::LineLine(a, b)) => {
-                    dirs.union(line_node(a), line_node(b), 0)
-                }
+            use Signature as S;
+            match c.signature {
+                S::ParallelLineLine(a, b) => dirs.union(line_node(a), line_node(b), 0),
                 // A distance between two lines only exists for parallel lines in the plane
                 // (format §1), and between two planes only for parallel planes.
-                (ConstraintKind::Distance, Shape::LineLine(a, b)) if two_d => {
-                    dirs.union(line_node(a), line_node(b), 0)
-                }
-                (ConstraintKind::Distance, Shape::PlanePlane(a, b)) => {
-                    dirs.union(plane_node[&a.0], plane_node[&b.0], 0)
-                }
-                (ConstraintKind::Perpendicular, Shape::LineLine(a, b)) => {
+                S::DistanceLineLine(a, b) if two_d => dirs.union(line_node(a), line_node(b), 0),
+                S::DistancePlanePlane(a, b) => dirs.union(plane_node[&a.0], plane_node[&b.0], 0),
+                S::PerpendicularLineLine(a, b) => {
                     if two_d {
                         dirs.union(line_node(a), line_node(b), 1);
                     } else {
                         orth_raw.push((line_node(a), line_node(b)));
                     }
                 }
-                (ConstraintKind::Horizontal, Shape::Line(a)) => {
-                    dirs.union(line_node(a), horizontal, 0)
-                }
-                (ConstraintKind::Vertical, Shape::Line(a)) => {
-                    dirs.union(line_node(a), horizontal, 1)
-                }
-                (ConstraintKind::Parallel, Shape::PlanePlane(a, b)) => {
-                    dirs.union(plane_node[&a.0], plane_node[&b.0], 0)
-                }
-                (ConstraintKind::Perpendicular, Shape::PlanePlane(a, b)) => {
+                S::Horizontal(a) => dirs.union(line_node(a), horizontal, 0),
+                S::Vertical(a) => dirs.union(line_node(a), horizontal, 1),
+                S::ParallelPlanePlane(a, b) => dirs.union(plane_node[&a.0], plane_node[&b.0], 0),
+                S::PerpendicularPlanePlane(a, b) => {
                     orth_raw.push((plane_node[&a.0], plane_node[&b.0]))
                 }
-                (ConstraintKind::Perpendicular, Shape::LinePlane { line, plane }) => {
+                S::PerpendicularLinePlane { line, plane } => {
                     dirs.union(line_node(line), plane_node[&plane.0], 0)
                 }
-                (ConstraintKind::Parallel, Shape::LinePlane { line, plane }) => {
+                S::ParallelLinePlane { line, plane } => {
                     orth_raw.push((line_node(line), plane_node[&plane.0]))
                 }
-                (ConstraintKind::Incident, Shape::LinePlane { line, plane }) => {
+                S::IncidentLinePlane { line, plane } => {
                     plane_lines.entry(plane.0).or_default().insert(line_node(line));
                 }
-                (ConstraintKind::Incident, Shape::PointPlane { point, plane }) => {
+                S::IncidentPointPlane { point, plane } => {
                     plane_points.entry(plane.0).or_default().insert(point_class[point.index()]);
                 }
-                _ => {}
+                // No rule: these state nothing about directions or planes' contents that the
+                // rules chain (metric values are not read; incidences to lines are carriers,
+                // above).
+                S::CoincidentPoints(..)
+                | S::DistancePointPoint(..)
+                | S::DistancePointLine { .. }
+                | S::DistancePointPlane { .. }
+                | S::DistanceLineLine(..)
+                | S::AngleLineLine(..)
+                | S::AnglePlanePlane(..)
+                | S::AngleLinePlane { .. }
+                | S::IncidentPointLine { .. }
+                | S::IncidentPointCircle { .. }
+                | S::IncidentPointSphere { .. }
+                | S::TangentLineCircle { .. }
+                | S::TangentCircleCircle(..)
+                | S::TangentPlaneSphere { .. }
+                | S::TangentSphereSphere(..)
+                | S::Radius(_)
+                | S::EqualLength(..)
+                | S::Midpoint { .. }
+                | S::Symmetric { .. }
+                | S::Fix(_) => {}
             }
         }
         // Closure: a line in a plane puts its points on the plane; a line with two points on
@@ -516,13 +519,15 @@ impl Facts {
             if e.index() >= self.entity_count {
                 return;
             }
-            match system.entity(e).geometry {
-                Geometry::Point { .. } | Geometry::Circle { .. } | Geometry::Sphere { .. } => {
+            let kind = system.entity(e).kind();
+            match kind.class() {
+                EntityClass::Point | EntityClass::Circle | EntityClass::Sphere => {
                     out.push(Elem::Point(self.point_class[e.index()]))
                 }
-                Geometry::Line { .. } => out.push(Elem::Line(self.carrier[e.index()])),
-                Geometry::Plane { .. } => out.push(Elem::Plane(e.0)),
-                Geometry::Segment { .. } => {}
+                // A composite line (a segment) counts as its points, added by the caller.
+                EntityClass::Line if kind.is_composite() => {}
+                EntityClass::Line => out.push(Elem::Line(self.carrier[e.index()])),
+                EntityClass::Plane => out.push(Elem::Plane(e.0)),
             }
         };
         for &e in entities {
@@ -693,8 +698,8 @@ impl Facts {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use gcs_model::SystemBuilder;
     use gcs_model::number::int;
+    use gcs_model::{ConstraintKind, SystemBuilder};
 
     fn pt(b: &mut SystemBuilder, id: &str, c: &[i64]) -> EntityIdx {
         b.point(id, Some(c.iter().map(|x| int(*x)).collect())).unwrap()

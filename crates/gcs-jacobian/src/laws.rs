@@ -1,0 +1,453 @@
+//! The equations of every constraint, in one table keyed by [`Signature`]: for each row of the
+//! constraint table, its variants (branches), its equations written once over dual numbers in
+//! any field, and — for the constructive placement — their difference-of-squares form.
+//!
+//! Every equation is polynomial in the coordinates of [`crate::repr`] (no square root, no
+//! trigonometry). Parameter-free constraints (incidence, parallelism, tangency…) give residuals
+//! that must vanish at the witness. Metric constraints (distance, angle, radius) give the
+//! gradient of their measure — the value is read off the witness, so it needs no equation; a
+//! measure that would need a square root (a signed distance, a cosine) is differentiated as a
+//! ratio (`Dual::ratio_sqrt`), which stays rational. Their measure itself, which does need
+//! square roots and trigonometry, is [`measure`] (in `f64`).
+//!
+//! Where a constraint's natural equations are more than its DOC (a 3D point on a 3D line as a
+//! cross product), all of them are returned as candidates and [`crate::plan`] keeps DOC of them
+//! that are independent at the witness.
+//!
+//! Adding a constraint kind: its rows in [`gcs_model::Signature`], then one arm here in [`law`],
+//! [`measure`] and [`parallel`] (the compiler lists them).
+
+use gcs_model::{EntityIdx, Signature};
+use gcs_rank::Field;
+
+use crate::dual::{Dual, vec as v};
+use crate::views::Local;
+
+/// `(P, M)` of an equation `|P|² − |M|² = 0`.
+pub(crate) type Split<F> = (Vec<Dual<F>>, Vec<Dual<F>>);
+
+/// An entity's sketch coordinates in a field (for `Fix`).
+pub(crate) type SketchFn<'s, F> = dyn Fn(EntityIdx) -> Option<Vec<F>> + 's;
+
+/// What the table says of one constraint in one variant, at one configuration.
+pub(crate) struct Law<F> {
+    /// How many variants (branches) the equations have; the plan picks the one that holds at
+    /// the witness (external or internal tangency, skew or parallel lines).
+    pub(crate) variants: usize,
+    /// The candidate rows: residuals that must vanish (parameter-free constraints) or the
+    /// gradients of the measure (metric constraints).
+    pub(crate) rows: Vec<Dual<F>>,
+    /// Whether the rows are measures (metric constraints) rather than residuals.
+    pub(crate) metric: bool,
+    /// The same equations as `|P|² − |M|² = 0` with `P`, `M` bilinear in the entities (so
+    /// linear in any one of them when the others are fixed), when they have that form and it
+    /// was asked for. The constructive placement solves `P = R M` for a rational orthogonal
+    /// `R`, which is linear.
+    pub(crate) split: Option<Split<F>>,
+}
+
+impl<F> Law<F> {
+    fn exact(rows: Vec<Dual<F>>) -> Self {
+        Law { variants: 1, rows, metric: false, split: None }
+    }
+
+    fn measure(row: Dual<F>) -> Self {
+        Law { variants: 1, rows: vec![row], metric: true, split: None }
+    }
+
+    fn variants(mut self, n: usize) -> Self {
+        self.variants = n;
+        self
+    }
+
+    fn split(mut self, want: bool, split: impl FnOnce() -> Split<F>) -> Self {
+        if want {
+            self.split = Some(split());
+        }
+        self
+    }
+}
+
+/// The equations of a constraint with signature `sig` in variant `variant` at the
+/// configuration `l` (see [`Law`]); `sketch` gives sketch coordinates for `Fix`; the
+/// difference-of-squares form is computed only when `want_split`.
+pub(crate) fn law<F: Field>(
+    sig: Signature,
+    variant: usize,
+    l: &Local<'_, F>,
+    sketch: &SketchFn<'_, F>,
+    want_split: bool,
+) -> Law<F> {
+    use Signature as S;
+    let d3 = l.is_3d();
+    match sig {
+        S::CoincidentPoints(a, b) => Law::exact(v::sub(&l.point(a), &l.point(b))),
+        S::DistancePointPoint(a, b) => Law::measure(v::norm2(&v::sub(&l.point(a), &l.point(b)))),
+        S::DistancePointLine { point, line } if !d3 => {
+            let x = l.point(point);
+            let [a, b, c0] = l.line2(line);
+            let p = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
+            Law::measure(Dual::ratio_sqrt(&p, &(&(&a * &a) + &(&b * &b))))
+        }
+        S::DistancePointLine { point, line } => {
+            let x = l.point(point);
+            let (d, m) = l.line3(line);
+            let w = v::sub(&v::cross3(&x, &d), &m);
+            Law::measure(Dual::ratio(&v::norm2(&w), &v::norm2(&d)))
+        }
+        S::DistancePointPlane { point, plane } => {
+            let x = l.point(point);
+            let (n, delta) = l.plane(plane);
+            Law::measure(Dual::ratio_sqrt(&(&v::dot(&n, &x) + &delta), &v::norm2(&n)))
+        }
+        S::DistanceLineLine(p, q) if !d3 => {
+            let [a1, b1, c1] = l.line2(p);
+            let [a2, b2, c2] = l.line2(q);
+            Law::measure(parallel_offset(&[a1, b1], &c1, &[a2, b2], &c2))
+        }
+        S::DistanceLineLine(p, q) => {
+            let (d1, m1) = l.line3(p);
+            let (d2, m2) = l.line3(q);
+            let row = if variant == 0 {
+                // Skew lines: (d1·m2 + d2·m1) / |d1 × d2|.
+                let num = &v::dot(&d1, &m2) + &v::dot(&d2, &m1);
+                Dual::ratio_sqrt(&num, &v::norm2(&v::cross3(&d1, &d2)))
+            } else {
+                // Parallel lines: |(d1·d2) m1 − |d1|² m2|² / ((d1·d2)² |d1|²).
+                let k = v::dot(&d1, &d2);
+                let w = v::sub(&v::scale(&m1, &k), &v::scale(&m2, &v::norm2(&d1)));
+                Dual::ratio(&v::norm2(&w), &(&(&k * &k) * &v::norm2(&d1)))
+            };
+            Law::measure(row).variants(2)
+        }
+        S::DistancePlanePlane(p, q) => {
+            let (n1, e1) = l.plane(p);
+            let (n2, e2) = l.plane(q);
+            Law::measure(parallel_offset(&n1, &e1, &n2, &e2))
+        }
+        S::AngleLineLine(p, q) if !d3 => {
+            // Oriented angle between normals: its gradient is proportional to
+            // cross0·∇dot − dot0·∇cross, regular at every angle (0° and 90° included).
+            let (n1, n2) = (l.normal2(p), l.normal2(q));
+            let dot = v::dot(&n1, &n2);
+            let cross = v::cross2(&n1, &n2);
+            Law::measure(&dot.scale(&cross.value) - &cross.scale(&dot.value))
+        }
+        S::AngleLineLine(p, q) => Law::measure(cosine(&l.direction3(p), &l.direction3(q))),
+        S::AngleLinePlane { line, plane } => {
+            Law::measure(cosine(&l.direction3(line), &l.plane(plane).0))
+        }
+        S::AnglePlanePlane(p, q) => Law::measure(cosine(&l.plane(p).0, &l.plane(q).0)),
+        S::ParallelLineLine(p, q) if !d3 => {
+            let [a1, b1, _] = l.line2(p);
+            let [a2, b2, _] = l.line2(q);
+            Law::exact(vec![v::cross2(&[a1, b1], &[a2, b2])])
+        }
+        S::ParallelLineLine(p, q) => Law::exact(v::cross3(&l.line3(p).0, &l.line3(q).0)),
+        S::ParallelPlanePlane(p, q) => Law::exact(v::cross3(&l.plane(p).0, &l.plane(q).0)),
+        S::ParallelLinePlane { line, plane } => {
+            Law::exact(vec![v::dot(&l.direction3(line), &l.plane(plane).0)])
+        }
+        S::PerpendicularLineLine(p, q) => {
+            // u·w = 0 is |u + w|² = |u − w|² (polarisation): quadratic in a point shared by
+            // two perpendicular segments (Thales).
+            let (u, w) = if d3 {
+                (l.direction3(p), l.direction3(q))
+            } else {
+                (l.normal2(p).to_vec(), l.normal2(q).to_vec())
+            };
+            Law::exact(vec![v::dot(&u, &w)]).split(want_split, || (v::add(&u, &w), v::sub(&u, &w)))
+        }
+        S::PerpendicularPlanePlane(p, q) => Law::exact(vec![v::dot(&l.plane(p).0, &l.plane(q).0)]),
+        S::PerpendicularLinePlane { line, plane } => {
+            Law::exact(v::cross3(&l.direction3(line), &l.plane(plane).0))
+        }
+        S::IncidentPointLine { point, line } if !d3 => {
+            let x = l.point(point);
+            let [a, b, c0] = l.line2(line);
+            Law::exact(vec![&(&(&a * &x[0]) + &(&b * &x[1])) + &c0])
+        }
+        S::IncidentPointLine { point, line } => {
+            let (d, m) = l.line3(line);
+            Law::exact(v::sub(&v::cross3(&l.point(point), &d), &m))
+        }
+        S::IncidentPointPlane { point, plane } => {
+            let (n, delta) = l.plane(plane);
+            Law::exact(vec![&v::dot(&n, &l.point(point)) + &delta])
+        }
+        S::IncidentPointCircle { point, circle: round }
+        | S::IncidentPointSphere { point, sphere: round } => {
+            let (c0, r) = l.round(round);
+            let d = v::sub(&l.point(point), &c0);
+            Law::exact(vec![&v::norm2(&d) - &(&r * &r)]).split(want_split, || (d, vec![r]))
+        }
+        S::IncidentLinePlane { line, plane } => {
+            // The line lies in the plane: n·d = 0 and n × m = δ d (a point x of the line has
+            // m = x × d, so n × m = x (n·d) − d (n·x) = δ d).
+            let (d, m) = l.line3(line);
+            let (n, delta) = l.plane(plane);
+            let mut rows = vec![v::dot(&n, &d)];
+            rows.extend(v::sub(&v::cross3(&n, &m), &v::scale(&d, &delta)));
+            Law::exact(rows)
+        }
+        S::TangentLineCircle { line, circle } => {
+            let [a, b, c0] = l.line2(line);
+            let (c, r) = l.round(circle);
+            let s = &(&(&a * &c[0]) + &(&b * &c[1])) + &c0;
+            let n2 = &(&a * &a) + &(&b * &b);
+            Law::exact(vec![&(&s * &s) - &(&(&r * &r) * &n2)])
+                .split(want_split, || (vec![s.clone()], vec![&r * &a, &r * &b]))
+        }
+        S::TangentPlaneSphere { plane, sphere } => {
+            let (n, delta) = l.plane(plane);
+            let (c, r) = l.round(sphere);
+            let s = &v::dot(&n, &c) + &delta;
+            Law::exact(vec![&(&s * &s) - &(&(&r * &r) * &v::norm2(&n))])
+                .split(want_split, || (vec![s.clone()], v::scale(&n, &r)))
+        }
+        S::TangentCircleCircle(p, q) | S::TangentSphereSphere(p, q) => {
+            // External (variant 0) or internal (variant 1) tangency.
+            let (c1, r1) = l.round(p);
+            let (c2, r2) = l.round(q);
+            let rr = if variant == 0 { &r1 + &r2 } else { &r1 - &r2 };
+            let d = v::sub(&c1, &c2);
+            Law::exact(vec![&v::norm2(&d) - &(&rr * &rr)])
+                .variants(2)
+                .split(want_split, || (d, vec![rr]))
+        }
+        S::Radius(e) => Law::measure(l.round(e).1),
+        S::EqualLength(s, t) => {
+            let (p1, q1) = l.segment(s);
+            let (p2, q2) = l.segment(t);
+            let (u, w) = (v::sub(&q1, &p1), v::sub(&q2, &p2));
+            Law::exact(vec![&v::norm2(&u) - &v::norm2(&w)]).split(want_split, || (u, w))
+        }
+        S::Midpoint { point, segment } => {
+            let m = l.point(point);
+            let (p, q) = l.segment(segment);
+            let two = Dual::int(2);
+            Law::exact(
+                m.iter().zip(p.iter().zip(&q)).map(|(m, (p, q))| &(&two * m) - &(p + q)).collect(),
+            )
+        }
+        S::Symmetric { a, b, axis } => {
+            let (x, y) = (l.point(a), l.point(b));
+            let [la, lb, lc] = l.line2(axis);
+            let s = v::add(&x, &y);
+            let d = v::sub(&x, &y);
+            let two = Dual::int(2);
+            let on_axis = &(&(&la * &s[0]) + &(&lb * &s[1])) + &(&two * &lc);
+            let across = v::cross2(&[la, lb], &d);
+            Law::exact(vec![on_axis, across])
+        }
+        S::Horizontal(e) => {
+            let [a, _] = l.normal2(e);
+            Law::exact(vec![a])
+        }
+        S::Vertical(e) => {
+            let [_, b] = l.normal2(e);
+            Law::exact(vec![b])
+        }
+        S::Fix(e) => Law::exact(fix_rows(l, e, sketch)),
+    }
+}
+
+/// `Fix`: every coordinate of the entity (or of its parts) equal to its sketch, homogeneous
+/// coordinates up to their scale.
+fn fix_rows<F: Field>(l: &Local<'_, F>, e: EntityIdx, sketch: &SketchFn<'_, F>) -> Vec<Dual<F>> {
+    let mut rows = Vec::new();
+    for b in l.system().base_entities(e) {
+        let x = l.coords(b);
+        let Some(s) = sketch(b) else { continue };
+        if x.len() == s.len() && l.homogeneous(b) {
+            // x ∝ s: x_j s_k − x_k s_j for every pair.
+            for j in 0..x.len() {
+                for k in j + 1..x.len() {
+                    rows.push(&x[j].scale(&s[k]) - &x[k].scale(&s[j]));
+                }
+            }
+        } else {
+            for (xj, sj) in x.iter().zip(&s) {
+                rows.push(xj - &Dual::constant(sj.clone()));
+            }
+        }
+    }
+    rows
+}
+
+/// Whether the lines or planes of a distance between lines or planes are parallel at `l`:
+/// `Some(true)` / `Some(false)` for [`Signature::DistanceLineLine`] and
+/// [`Signature::DistancePlanePlane`] — the condition under which the parallel-offset distance
+/// is defined (2D lines, planes) or which picks the formula (3D lines) — and `None` for every
+/// other constraint.
+pub(crate) fn parallel<F: Field>(
+    sig: Signature,
+    l: &Local<'_, F>,
+    is_zero: &dyn Fn(&F) -> bool,
+) -> Option<bool> {
+    use Signature as S;
+    let zero = |xs: &[Dual<F>]| xs.iter().all(|x| is_zero(&x.value));
+    match sig {
+        S::DistanceLineLine(p, q) if !l.is_3d() => {
+            let [a1, b1, _] = l.line2(p);
+            let [a2, b2, _] = l.line2(q);
+            Some(is_zero(&v::cross2(&[a1, b1], &[a2, b2]).value))
+        }
+        S::DistanceLineLine(p, q) => Some(zero(&v::cross3(&l.line3(p).0, &l.line3(q).0))),
+        S::DistancePlanePlane(p, q) => Some(zero(&v::cross3(&l.plane(p).0, &l.plane(q).0))),
+        S::CoincidentPoints(..)
+        | S::DistancePointPoint(..)
+        | S::DistancePointLine { .. }
+        | S::DistancePointPlane { .. }
+        | S::AngleLineLine(..)
+        | S::AnglePlanePlane(..)
+        | S::AngleLinePlane { .. }
+        | S::ParallelLineLine(..)
+        | S::ParallelPlanePlane(..)
+        | S::ParallelLinePlane { .. }
+        | S::PerpendicularLineLine(..)
+        | S::PerpendicularPlanePlane(..)
+        | S::PerpendicularLinePlane { .. }
+        | S::IncidentPointLine { .. }
+        | S::IncidentPointPlane { .. }
+        | S::IncidentPointCircle { .. }
+        | S::IncidentPointSphere { .. }
+        | S::IncidentLinePlane { .. }
+        | S::TangentLineCircle { .. }
+        | S::TangentCircleCircle(..)
+        | S::TangentPlaneSphere { .. }
+        | S::TangentSphereSphere(..)
+        | S::Radius(_)
+        | S::EqualLength(..)
+        | S::Midpoint { .. }
+        | S::Symmetric { .. }
+        | S::Horizontal(_)
+        | S::Vertical(_)
+        | S::Fix(_) => None,
+    }
+}
+
+/// The measure of a metric constraint at a real configuration, in the units of its value
+/// (lengths in model units, angles in degrees), with its gradient; `None` for parameter-free
+/// constraints. Distances are unsigned; the angle between 2D lines is the angle from the
+/// first line to the second, modulo 180° (lines have no orientation), in `[0°, 180°)`; the
+/// angles in 3D are unsigned, in `[0°, 90°]`.
+pub(crate) fn measure(sig: Signature, variant: usize, l: &Local<'_, f64>) -> Option<Dual<f64>> {
+    use Signature as S;
+    let d3 = l.is_3d();
+    let sqrt = |x: &Dual<f64>| x.map(f64::sqrt, |v| 0.5 / v.sqrt());
+    let abs = |x: &Dual<f64>| if x.value < 0.0 { -x } else { x.clone() };
+    Some(match sig {
+        S::DistancePointPoint(a, b) => sqrt(&v::norm2(&v::sub(&l.point(a), &l.point(b)))),
+        S::DistancePointLine { point, line } if !d3 => {
+            let x = l.point(point);
+            let [a, b, c0] = l.line2(line);
+            let p = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
+            abs(&p).over(&sqrt(&(&(&a * &a) + &(&b * &b))))
+        }
+        S::DistancePointLine { point, line } => {
+            let x = l.point(point);
+            let (d, m) = l.line3(line);
+            let w = v::sub(&v::cross3(&x, &d), &m);
+            sqrt(&v::norm2(&w).over(&v::norm2(&d)))
+        }
+        S::DistancePointPlane { point, plane } => {
+            let (n, delta) = l.plane(plane);
+            abs(&(&v::dot(&n, &l.point(point)) + &delta)).over(&sqrt(&v::norm2(&n)))
+        }
+        S::DistanceLineLine(p, q) if !d3 => {
+            let [a1, b1, c1] = l.line2(p);
+            let [a2, b2, c2] = l.line2(q);
+            let n1 = [a1, b1];
+            let k = v::dot(&n1, &[a2, b2]);
+            let num = &(&c1 * &k) - &(&c2 * &v::norm2(&n1));
+            abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1))))
+        }
+        S::DistanceLineLine(p, q) => {
+            let (d1, m1) = l.line3(p);
+            let (d2, m2) = l.line3(q);
+            if variant == 0 {
+                let num = &v::dot(&d1, &m2) + &v::dot(&d2, &m1);
+                abs(&num).over(&sqrt(&v::norm2(&v::cross3(&d1, &d2))))
+            } else {
+                let k = v::dot(&d1, &d2);
+                let w = v::sub(&v::scale(&m1, &k), &v::scale(&m2, &v::norm2(&d1)));
+                sqrt(&v::norm2(&w).over(&(&(&k * &k) * &v::norm2(&d1))))
+            }
+        }
+        S::DistancePlanePlane(p, q) => {
+            let (n1, e1) = l.plane(p);
+            let (n2, e2) = l.plane(q);
+            let k = v::dot(&n1, &n2);
+            let num = &(&e1 * &k) - &(&e2 * &v::norm2(&n1));
+            abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1))))
+        }
+        S::AngleLineLine(p, q) if !d3 => {
+            // From the direction of the first line to that of the second: the directions are
+            // the normals turned by 90°, the same angle.
+            let (n1, n2) = (l.normal2(p), l.normal2(q));
+            let dot = v::dot(&n1, &n2);
+            let cross = v::cross2(&n1, &n2);
+            let degrees = Dual::atan2(&cross, &dot).scale(&(180.0 / std::f64::consts::PI));
+            degrees.map(|x| x.rem_euclid(180.0), |_| 1.0)
+        }
+        S::AngleLineLine(p, q) => unsigned_angle(&l.direction3(p), &l.direction3(q), false),
+        S::AngleLinePlane { line, plane } => {
+            unsigned_angle(&l.direction3(line), &l.plane(plane).0, true)
+        }
+        S::AnglePlanePlane(p, q) => unsigned_angle(&l.plane(p).0, &l.plane(q).0, false),
+        S::Radius(e) => l.round(e).1,
+        S::CoincidentPoints(..)
+        | S::ParallelLineLine(..)
+        | S::ParallelPlanePlane(..)
+        | S::ParallelLinePlane { .. }
+        | S::PerpendicularLineLine(..)
+        | S::PerpendicularPlanePlane(..)
+        | S::PerpendicularLinePlane { .. }
+        | S::IncidentPointLine { .. }
+        | S::IncidentPointPlane { .. }
+        | S::IncidentPointCircle { .. }
+        | S::IncidentPointSphere { .. }
+        | S::IncidentLinePlane { .. }
+        | S::TangentLineCircle { .. }
+        | S::TangentCircleCircle(..)
+        | S::TangentPlaneSphere { .. }
+        | S::TangentSphereSphere(..)
+        | S::EqualLength(..)
+        | S::Midpoint { .. }
+        | S::Symmetric { .. }
+        | S::Horizontal(_)
+        | S::Vertical(_)
+        | S::Fix(_) => return None,
+    })
+}
+
+/// The angle in degrees, in `[0°, 90°]`, between two undirected lines with directions `u`, `w`
+/// (`complement`: between a line and a plane of normal `w`, 90° minus that).
+fn unsigned_angle(u: &[Dual<f64>], w: &[Dual<f64>], complement: bool) -> Dual<f64> {
+    let dot = v::dot(u, w);
+    let dot = if dot.value < 0.0 { -&dot } else { dot };
+    let cross = v::cross3(u, w);
+    let sin = v::norm2(&cross).map(f64::sqrt, |x| 0.5 / x.sqrt().max(f64::MIN_POSITIVE));
+    let degrees = Dual::atan2(&sin, &dot).scale(&(180.0 / std::f64::consts::PI));
+    if complement { &Dual::constant(90.0) - &degrees } else { degrees }
+}
+
+/// The cosine of the angle between two vectors, as a ratio row.
+fn cosine<F: Field>(u: &[Dual<F>], w: &[Dual<F>]) -> Dual<F> {
+    Dual::ratio_sqrt(&v::dot(u, w), &(&v::norm2(u) * &v::norm2(w)))
+}
+
+/// The signed distance between two parallel hyperplanes `n1·x + e1 = 0`, `n2·x + e2 = 0`
+/// (2D lines or planes): `(e1 (n1·n2) − e2 |n1|²) / ((n1·n2) |n1|)`.
+fn parallel_offset<F: Field>(
+    n1: &[Dual<F>],
+    e1: &Dual<F>,
+    n2: &[Dual<F>],
+    e2: &Dual<F>,
+) -> Dual<F> {
+    let k = v::dot(n1, n2);
+    let n1n1 = v::norm2(n1);
+    let num = &(e1 * &k) - &(e2 * &n1n1);
+    Dual::ratio_sqrt(&num, &(&(&k * &k) * &n1n1))
+}
