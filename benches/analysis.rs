@@ -1,4 +1,4 @@
-//! Criterion benchmarks of the whole witness analysis — `gcs_decompose::analyze` on an
+//! Criterion benchmarks of the whole witness analysis — `gcs_analysis::analyze` on an
 //! in-memory `System` (witness search, Jacobian assembly, elimination, trivial motions,
 //! clusters; parsing excluded) — on generated families of growing size, every backend side by
 //! side:
@@ -22,7 +22,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, SamplingMode};
-use gcs_decompose::{AnalysisOptions, Backend, analyze};
+use gcs_analysis::{AnalysisOptions, Backend, analyze};
 use gcs_model::System;
 use gcs_model::generate::{laman, laman_sketch, rectangles, triangulated_sphere};
 

@@ -1,7 +1,7 @@
 //! Criterion benchmarks of the rigid subsystems (witness paper §4–§5) on generated families of
 //! growing size:
 //!
-//! - cluster finding with the four methods of `gcs_decompose::ClusterMethod` — the paper's
+//! - cluster finding with the four methods of `gcs_analysis::ClusterMethod` — the paper's
 //!   Algorithm 1 (one elimination per reference), Algorithm 2 (one elimination, pivot exchanges
 //!   per reference), the kernel restriction (one elimination, no exchange) and the open-chain
 //!   shortcut (one small elimination per block; the kernel method where it does not apply) —
@@ -20,7 +20,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion};
-use gcs_decompose::{AnalysisOptions, Backend, ClusterMethod, RemovalOrder, analyze};
+use gcs_analysis::{AnalysisOptions, Backend, ClusterMethod, RemovalOrder, analyze};
 use gcs_model::Dim;
 use gcs_model::System;
 use gcs_model::generate::{framework, laman_edges, random_coords, strip, triangle_chain};

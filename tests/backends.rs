@@ -11,7 +11,7 @@
 mod common;
 
 use common::{Verdict, backends, try_run};
-use gcs_decompose::Backend;
+use gcs_analysis::Backend;
 use gcs_model::generate::{
     framework, laman, laman_edges, random_coords, rectangles, triangulated_sphere,
 };
@@ -134,6 +134,6 @@ fn backends_under_test() {
     if !Backend::Rug.available() {
         // Without the feature, asking for rug is an error, not a silent fallback.
         let s = load("data/paper/kite.ron");
-        assert!(gcs_decompose::analyze(&s, &common::options(Backend::Rug, 1)).is_err());
+        assert!(gcs_analysis::analyze(&s, &common::options(Backend::Rug, 1)).is_err());
     }
 }

@@ -7,7 +7,7 @@
 mod common;
 
 use common::{Verdict, run, try_run};
-use gcs_decompose::Backend;
+use gcs_analysis::Backend;
 use gcs_jacobian::WitnessSource;
 use gcs_suite::{data_files, fixed_entities, load, rebuild, strip_unfixed_sketch};
 
@@ -35,8 +35,7 @@ fn generated_witness_agrees_with_the_sketch() {
         );
         let stripped = strip_unfixed_sketch(&s);
         for seed in [1, 2] {
-            let a = match gcs_decompose::analyze(&stripped, &common::options(Backend::Exact, seed))
-            {
+            let a = match gcs_analysis::analyze(&stripped, &common::options(Backend::Exact, seed)) {
                 Ok(a) => a,
                 Err(e) => {
                     failures.push(format!("{file} (seed {seed}): no generated witness: {e}"));

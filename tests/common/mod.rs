@@ -3,7 +3,7 @@
 
 #![allow(dead_code, unreachable_pub)]
 
-use gcs_decompose::{Analysis, AnalysisOptions, Backend, analyze};
+use gcs_analysis::{Analysis, AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessOptions;
 use gcs_model::System;
 

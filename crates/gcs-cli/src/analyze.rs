@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gcs_decompose::{Analysis, AnalysisOptions, Backend, analyze};
+use gcs_analysis::{Analysis, AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessOptions;
 use gcs_model::System;
 use serde::Serialize;
@@ -115,7 +115,7 @@ fn json(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> St
             .as_ref()
             .map(|trees| trees.iter().map(|t| decompose::tree_json(system, t)).collect()),
         decomposition_complete: a.decomposition_statistics.map(|s| s.complete),
-        clusters_arithmetic: a.clusters_arithmetic,
+        clusters_arithmetic: a.clusters_arithmetic.name(),
     };
     serde_json::to_string(&report).unwrap_or_default()
 }

@@ -1,6 +1,6 @@
 //! Rendering clusters and W-decompositions: JSON (format §2–§3), text trees, Graphviz DOT.
 
-use gcs_decompose::{Cluster, DecompositionNode};
+use gcs_analysis::{Cluster, DecompositionNode};
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use serde::Serialize;
 

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use gcs_decompose::Backend;
+use gcs_analysis::Backend;
 
 /// Analyse geometric constraint systems (CAD sketches and assemblies) without solving them.
 ///

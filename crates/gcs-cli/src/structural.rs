@@ -8,7 +8,7 @@
 //! displacements it admits has dependent equations), and a method that finds none while the
 //! witness finds a redundant constraint was fooled by the geometry.
 
-use gcs_decompose::Analysis;
+use gcs_analysis::Analysis;
 use gcs_jacobian::Layout;
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rigidity::{

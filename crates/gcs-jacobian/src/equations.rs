@@ -139,22 +139,7 @@ impl<'s> Equations<'s> {
         }
         let value = constraint.value.as_ref()?.to_f64()?;
         let local = self.local(c, x);
-        let m = laws::measure(constraint.signature, self.branch(c), &local)?;
-        let target = match constraint.signature {
-            gcs_model::Signature::AngleLineLine(..) if self.system.dim() == gcs_model::Dim::Two => {
-                let t = value.rem_euclid(180.0);
-                // The nearest representative of the measure's class modulo 180°.
-                let d = m.value - t;
-                t + 180.0 * (d / 180.0).round()
-            }
-            gcs_model::Signature::AngleLineLine(..)
-            | gcs_model::Signature::AngleLinePlane { .. }
-            | gcs_model::Signature::AnglePlanePlane(..) => {
-                let t = value.rem_euclid(180.0);
-                t.min(180.0 - t)
-            }
-            _ => value,
-        };
+        let (m, target) = laws::measure(constraint.signature, self.branch(c), &local, value)?;
         Some(Residual {
             constraint: c,
             values: vec![m.value - target],

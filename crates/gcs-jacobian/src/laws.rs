@@ -328,32 +328,44 @@ pub(crate) fn parallel<F: Field>(
 }
 
 /// The measure of a metric constraint at a real configuration, in the units of its value
-/// (lengths in model units, angles in degrees), with its gradient; `None` for parameter-free
-/// constraints. Distances are unsigned; the angle between 2D lines is the angle from the
-/// first line to the second, modulo 180° (lines have no orientation), in `[0°, 180°)`; the
-/// angles in 3D are unsigned, in `[0°, 90°]`.
-pub(crate) fn measure(sig: Signature, variant: usize, l: &Local<'_, f64>) -> Option<Dual<f64>> {
+/// (lengths in model units, angles in degrees), with its gradient, and the user's `value`
+/// reduced to the range of the measure; `None` for parameter-free constraints. Distances are
+/// unsigned; the angle between 2D lines is the angle from the first line to the second,
+/// modulo 180° (lines have no orientation; the value is taken modulo 180° too, nearest the
+/// measure); the angles in 3D are unsigned, in `[0°, 90°]` (a value `v` stands for
+/// `min(v mod 180°, 180° − v mod 180°)`).
+pub(crate) fn measure(
+    sig: Signature,
+    variant: usize,
+    l: &Local<'_, f64>,
+    value: f64,
+) -> Option<(Dual<f64>, f64)> {
     use Signature as S;
     let d3 = l.is_3d();
+    let unsigned = |m: Dual<f64>| {
+        let t = value.rem_euclid(180.0);
+        (m, t.min(180.0 - t))
+    };
     let sqrt = |x: &Dual<f64>| x.map(f64::sqrt, |v| 0.5 / v.sqrt());
     let abs = |x: &Dual<f64>| if x.value < 0.0 { -x } else { x.clone() };
+    let length = |m: Dual<f64>| (m, value);
     Some(match sig {
-        S::DistancePointPoint(a, b) => sqrt(&v::norm2(&v::sub(&l.point(a), &l.point(b)))),
+        S::DistancePointPoint(a, b) => length(sqrt(&v::norm2(&v::sub(&l.point(a), &l.point(b))))),
         S::DistancePointLine { point, line } if !d3 => {
             let x = l.point(point);
             let [a, b, c0] = l.line2(line);
             let p = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
-            abs(&p).over(&sqrt(&(&(&a * &a) + &(&b * &b))))
+            length(abs(&p).over(&sqrt(&(&(&a * &a) + &(&b * &b)))))
         }
         S::DistancePointLine { point, line } => {
             let x = l.point(point);
             let (d, m) = l.line3(line);
             let w = v::sub(&v::cross3(&x, &d), &m);
-            sqrt(&v::norm2(&w).over(&v::norm2(&d)))
+            length(sqrt(&v::norm2(&w).over(&v::norm2(&d))))
         }
         S::DistancePointPlane { point, plane } => {
             let (n, delta) = l.plane(plane);
-            abs(&(&v::dot(&n, &l.point(point)) + &delta)).over(&sqrt(&v::norm2(&n)))
+            length(abs(&(&v::dot(&n, &l.point(point)) + &delta)).over(&sqrt(&v::norm2(&n))))
         }
         S::DistanceLineLine(p, q) if !d3 => {
             let [a1, b1, c1] = l.line2(p);
@@ -361,26 +373,26 @@ pub(crate) fn measure(sig: Signature, variant: usize, l: &Local<'_, f64>) -> Opt
             let n1 = [a1, b1];
             let k = v::dot(&n1, &[a2, b2]);
             let num = &(&c1 * &k) - &(&c2 * &v::norm2(&n1));
-            abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1))))
+            length(abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1)))))
         }
         S::DistanceLineLine(p, q) => {
             let (d1, m1) = l.line3(p);
             let (d2, m2) = l.line3(q);
-            if variant == 0 {
+            length(if variant == 0 {
                 let num = &v::dot(&d1, &m2) + &v::dot(&d2, &m1);
                 abs(&num).over(&sqrt(&v::norm2(&v::cross3(&d1, &d2))))
             } else {
                 let k = v::dot(&d1, &d2);
                 let w = v::sub(&v::scale(&m1, &k), &v::scale(&m2, &v::norm2(&d1)));
                 sqrt(&v::norm2(&w).over(&(&(&k * &k) * &v::norm2(&d1))))
-            }
+            })
         }
         S::DistancePlanePlane(p, q) => {
             let (n1, e1) = l.plane(p);
             let (n2, e2) = l.plane(q);
             let k = v::dot(&n1, &n2);
             let num = &(&e1 * &k) - &(&e2 * &v::norm2(&n1));
-            abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1))))
+            length(abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1)))))
         }
         S::AngleLineLine(p, q) if !d3 => {
             // From the direction of the first line to that of the second: the directions are
@@ -389,14 +401,20 @@ pub(crate) fn measure(sig: Signature, variant: usize, l: &Local<'_, f64>) -> Opt
             let dot = v::dot(&n1, &n2);
             let cross = v::cross2(&n1, &n2);
             let degrees = Dual::atan2(&cross, &dot).scale(&(180.0 / std::f64::consts::PI));
-            degrees.map(|x| x.rem_euclid(180.0), |_| 1.0)
+            let m = degrees.map(|x| x.rem_euclid(180.0), |_| 1.0);
+            // The representative of the value modulo 180° nearest the measure.
+            let t = value.rem_euclid(180.0);
+            let target = t + 180.0 * ((m.value - t) / 180.0).round();
+            (m, target)
         }
-        S::AngleLineLine(p, q) => unsigned_angle(&l.direction3(p), &l.direction3(q), false),
+        S::AngleLineLine(p, q) => {
+            unsigned(unsigned_angle(&l.direction3(p), &l.direction3(q), false))
+        }
         S::AngleLinePlane { line, plane } => {
-            unsigned_angle(&l.direction3(line), &l.plane(plane).0, true)
+            unsigned(unsigned_angle(&l.direction3(line), &l.plane(plane).0, true))
         }
-        S::AnglePlanePlane(p, q) => unsigned_angle(&l.plane(p).0, &l.plane(q).0, false),
-        S::Radius(e) => l.round(e).1,
+        S::AnglePlanePlane(p, q) => unsigned(unsigned_angle(&l.plane(p).0, &l.plane(q).0, false)),
+        S::Radius(e) => length(l.round(e).1),
         S::CoincidentPoints(..)
         | S::ParallelLineLine(..)
         | S::ParallelPlanePlane(..)

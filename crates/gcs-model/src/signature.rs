@@ -260,6 +260,7 @@ impl Signature {
         kinds: &[EntityKind],
     ) -> Result<(Signature, usize), &'static str> {
         use ConstraintKind as K;
+        use Directions as D;
         use EntityClass as C;
         use Signature as S;
         let d2 = dim == Dim::Two;
@@ -272,6 +273,17 @@ impl Signature {
                 [a, b] if *a == y && *b == x => Some((args[1], args[0])),
                 _ => None,
             }
+        };
+        // Lines and planes, for the kinds that relate directions.
+        let directions = || -> Result<Directions, &'static str> {
+            pair(C::Line, C::Line)
+                .map(|(a, b)| Directions::LineLine(a, b))
+                .or_else(|| pair(C::Plane, C::Plane).map(|(a, b)| Directions::PlanePlane(a, b)))
+                .or_else(|| {
+                    pair(C::Line, C::Plane)
+                        .map(|(line, plane)| Directions::LinePlane { line, plane })
+                })
+                .ok_or(if d2 { "two lines" } else { "line–line, line–plane or plane–plane" })
         };
         let single = |x: EntityClass| -> Option<EntityIdx> {
             match classes.as_slice() {
@@ -304,31 +316,21 @@ impl Signature {
                     Err(expected)
                 }
             }
-            K::Angle | K::Parallel | K::Perpendicular => {
-                let expected =
-                    if d2 { "two lines" } else { "line–line, line–plane or plane–plane" };
-                if let Some((a, b)) = pair(C::Line, C::Line) {
-                    Ok(match kind {
-                        K::Angle => (S::AngleLineLine(a, b), 1),
-                        K::Parallel => (S::ParallelLineLine(a, b), if d2 { 1 } else { 2 }),
-                        _ => (S::PerpendicularLineLine(a, b), 1),
-                    })
-                } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
-                    Ok(match kind {
-                        K::Angle => (S::AnglePlanePlane(a, b), 1),
-                        K::Parallel => (S::ParallelPlanePlane(a, b), 2),
-                        _ => (S::PerpendicularPlanePlane(a, b), 1),
-                    })
-                } else if let Some((line, plane)) = pair(C::Line, C::Plane) {
-                    Ok(match kind {
-                        K::Angle => (S::AngleLinePlane { line, plane }, 1),
-                        K::Parallel => (S::ParallelLinePlane { line, plane }, 1),
-                        _ => (S::PerpendicularLinePlane { line, plane }, 2),
-                    })
-                } else {
-                    Err(expected)
-                }
-            }
+            K::Angle => Ok(match directions()? {
+                D::LineLine(a, b) => (S::AngleLineLine(a, b), 1),
+                D::PlanePlane(a, b) => (S::AnglePlanePlane(a, b), 1),
+                D::LinePlane { line, plane } => (S::AngleLinePlane { line, plane }, 1),
+            }),
+            K::Parallel => Ok(match directions()? {
+                D::LineLine(a, b) => (S::ParallelLineLine(a, b), if d2 { 1 } else { 2 }),
+                D::PlanePlane(a, b) => (S::ParallelPlanePlane(a, b), 2),
+                D::LinePlane { line, plane } => (S::ParallelLinePlane { line, plane }, 1),
+            }),
+            K::Perpendicular => Ok(match directions()? {
+                D::LineLine(a, b) => (S::PerpendicularLineLine(a, b), 1),
+                D::PlanePlane(a, b) => (S::PerpendicularPlanePlane(a, b), 1),
+                D::LinePlane { line, plane } => (S::PerpendicularLinePlane { line, plane }, 2),
+            }),
             K::Incident => {
                 let expected = if d2 {
                     "point–line or point–circle"
@@ -407,4 +409,11 @@ impl Signature {
             },
         }
     }
+}
+
+/// Two entities whose directions an angle, a parallelism or a perpendicularity relates.
+enum Directions {
+    LineLine(EntityIdx, EntityIdx),
+    PlanePlane(EntityIdx, EntityIdx),
+    LinePlane { line: EntityIdx, plane: EntityIdx },
 }

@@ -3,7 +3,7 @@
 //! structural verdict equals the witness verdict, and the over-dense subsystem Dense finds
 //! contains a constraint the witness analysis finds redundant.
 
-use gcs_decompose::{AnalysisOptions, analyze};
+use gcs_analysis::{AnalysisOptions, analyze};
 use gcs_model::Dim;
 use gcs_model::generate::{framework, laman_edges, random_coords};
 use gcs_model::rng::SplitMix64;

@@ -3,7 +3,7 @@
 //! DOC independent rows at a generic witness"), and every entity kind alone admits exactly its
 //! degree of rigidity in trivial motions.
 
-use gcs_decompose::{AnalysisOptions, Backend, analyze};
+use gcs_analysis::{AnalysisOptions, Backend, analyze};
 use gcs_jacobian::{WitnessOptions, WitnessSource};
 use gcs_model::System;
 

@@ -14,7 +14,7 @@
 
 use std::collections::BTreeSet;
 
-use gcs_decompose::{Analysis, AnalysisOptions, analyze};
+use gcs_analysis::{Analysis, AnalysisOptions, analyze};
 use gcs_model::generate::{framework, laman_edges, random_coords, sphere_edges};
 use gcs_model::rng::SplitMix64;
 use gcs_model::{Dim, System};
@@ -195,7 +195,7 @@ fn smallest_frameworks() {
 /// member of the spanning group is a Laman bar of the rigid part the extra bar closes.
 #[test]
 fn decimal_sketches_are_certified_exactly_by_the_displacements() {
-    use gcs_decompose::Backend;
+    use gcs_analysis::Backend;
     use gcs_model::generate::laman_sketch;
     for (n, seed) in [(40, 1), (120, 7)] {
         let s = laman_sketch(n, seed);

@@ -5,16 +5,63 @@ use gcs_jacobian::{
     Jacobian, JacobianError, Layout, RowOwner, Witness, WitnessOptions, WitnessSource,
     find_witness, motions,
 };
-use gcs_model::{ConstraintIdx, EntityIdx, System};
+use gcs_model::{ConstraintIdx, System};
 use gcs_rank::{
     BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP, Proof, Rat,
     RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact, certify_rows, echelon_rank,
     float_rank_qr,
 };
 
+use gcs_decompose::{
+    Cluster, ClusterMethod, ClusterOptions, Decomposition, DecompositionNode, RemovalOrder,
+    Statistics,
+};
+
 use crate::error::AnalysisError;
-use crate::rigid::ClusterMethod;
-use crate::wdec::{DecompositionNode, RemovalOrder, Statistics};
+
+/// The arithmetic a part of the analysis was decided in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Arithmetic {
+    /// Exact rationals.
+    Rational,
+    /// Modulo the prime 2^61 − 1: exact with overwhelming probability.
+    ModP,
+    /// `f64` with a relative tolerance.
+    Float {
+        /// The tolerance.
+        tolerance: f64,
+    },
+    /// Not computed (not asked for).
+    None,
+}
+
+impl Arithmetic {
+    /// The report name: `rational`, `modp`, `float`, `none`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Arithmetic::Rational => "rational",
+            Arithmetic::ModP => "modp",
+            Arithmetic::Float { .. } => "float",
+            Arithmetic::None => "none",
+        }
+    }
+}
+
+/// Clusters, and the decomposition when asked for.
+type ClusterResult = (Vec<Cluster>, Option<Decomposition>);
+
+/// The clusters of the whole system (and their W-decompositions) at the witness, in `F`.
+fn clusters_in<F: Field>(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+    echelon: EchelonOptions,
+    options: &ClusterOptions,
+) -> Result<ClusterResult, AnalysisError> {
+    let jacobian: Jacobian<F> = witness.jacobian(system, layout)?;
+    let coords: Vec<F> = witness.coords_in()?;
+    Ok(gcs_decompose::clusters(system, layout, &jacobian, coords, echelon, options)?)
+}
 
 /// The arithmetic the rank is decided in.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -105,17 +152,6 @@ pub struct Redundancy {
     pub spanning_group: Vec<ConstraintIdx>,
 }
 
-/// A maximal rigid subsystem (format §2, `clusters`).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Cluster {
-    /// Its entities, in file order (segments whose two points are in it included).
-    pub entities: Vec<EntityIdx>,
-    /// The constraints among its entities, in file order.
-    pub constraints: Vec<ConstraintIdx>,
-    /// Whether absolute constraints (`Fix`, `Horizontal`, `Vertical`) hold it in place.
-    pub grounded: bool,
-}
-
 /// The result of the witness analysis of one system (format §2).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Analysis {
@@ -145,9 +181,8 @@ pub struct Analysis {
     pub redundant: Vec<Redundancy>,
     /// The maximal rigid subsystems, sorted by first entity (file order).
     pub clusters: Vec<Cluster>,
-    /// The arithmetic the clusters were decided in (`"rational"`, `"modp"` or `"float"`;
-    /// `"none"` when they were not asked for).
-    pub clusters_arithmetic: &'static str,
+    /// The arithmetic the clusters were decided in.
+    pub clusters_arithmetic: Arithmetic,
     /// With [`AnalysisOptions::decompose`]: the W-decomposition of every cluster, in the order
     /// of `clusters`.
     pub decomposition: Option<Vec<DecompositionNode>>,
@@ -441,33 +476,43 @@ pub fn analyze_at(
         r.spanning_group.sort();
         r.spanning_group.dedup();
     }
-    let ((clusters, decomposition), clusters_arithmetic) = match options.backend {
-        _ if !options.clusters => ((Vec::new(), None), "none"),
-        Backend::Float { tolerance } => (
-            clusters_in::<f64>(
+    let cluster_options = ClusterOptions {
+        method: options.cluster_method,
+        decompose: options.decompose,
+        removal_order: options.removal_order,
+        decomposition_budget: options.decomposition_budget,
+    };
+    let in_field = |arithmetic: Arithmetic| -> Result<ClusterResult, AnalysisError> {
+        let exact = EchelonOptions::default();
+        Ok(match arithmetic {
+            Arithmetic::None => (Vec::new(), None),
+            Arithmetic::Float { tolerance } => clusters_in::<f64>(
                 system,
                 layout,
                 &witness,
                 EchelonOptions::float(tolerance),
-                options,
+                &cluster_options,
             )?,
-            "float",
-        ),
+            Arithmetic::Rational => {
+                clusters_in::<Rat>(system, layout, &witness, exact, &cluster_options)?
+            }
+            Arithmetic::ModP => {
+                clusters_in::<ModP>(system, layout, &witness, exact, &cluster_options)?
+            }
+        })
+    };
+    let clusters_arithmetic = match options.backend {
+        _ if !options.clusters => Arithmetic::None,
+        Backend::Float { tolerance } => Arithmetic::Float { tolerance },
         // Exact rationals (with a machine-word fast path) for the rational backends, and for
         // the exact one on systems small enough that rational fill-in stays cheap.
-        Backend::Rational | Backend::Rug => (
-            clusters_in::<Rat>(system, layout, &witness, EchelonOptions::default(), options)?,
-            "rational",
-        ),
-        Backend::Exact if layout.ncols() <= EXACT_CLUSTER_LIMIT && !options.decompose => (
-            clusters_in::<Rat>(system, layout, &witness, EchelonOptions::default(), options)?,
-            "rational",
-        ),
-        Backend::Exact | Backend::ModP => (
-            clusters_in::<ModP>(system, layout, &witness, EchelonOptions::default(), options)?,
-            "modp",
-        ),
+        Backend::Rational | Backend::Rug => Arithmetic::Rational,
+        Backend::Exact if layout.ncols() <= EXACT_CLUSTER_LIMIT && !options.decompose => {
+            Arithmetic::Rational
+        }
+        Backend::Exact | Backend::ModP => Arithmetic::ModP,
     };
+    let (clusters, decomposition) = in_field(clusters_arithmetic)?;
     let (decomposition, decomposition_statistics) = match decomposition {
         Some((d, s)) => (Some(d), Some(s)),
         None => (None, None),
@@ -499,119 +544,6 @@ pub fn analyze_at(
 /// backend; larger ones (and W-decompositions, which compute clusters many times) modulo the
 /// 61-bit prime — exact with overwhelming probability; the rank stays proven either way.
 const EXACT_CLUSTER_LIMIT: usize = 64;
-
-/// Clusters, and the decomposition when asked for.
-type ClusterResult = (Vec<Cluster>, Option<(Vec<DecompositionNode>, Statistics)>);
-
-/// The clusters of the whole system (and their W-decompositions), computed in the field `F`.
-fn clusters_in<F: Field>(
-    system: &System,
-    layout: &Layout,
-    witness: &Witness,
-    echelon: EchelonOptions,
-    options: &AnalysisOptions,
-) -> Result<ClusterResult, AnalysisError> {
-    let jacobian: Jacobian<F> = witness.jacobian(system, layout)?;
-    let coords: Vec<F> = witness.coords_in()?;
-    let generators = motions::generators::<F>(system, layout, &coords)?;
-    let mut ctx = crate::rigid::Context::new(system, layout, &jacobian, generators, echelon);
-    ctx.method = options.cluster_method;
-    let groups = ctx.constraint_groups(&jacobian);
-    let entities: Vec<EntityIdx> =
-        system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
-    let sub = crate::rigid::Subsystem { entities, groups };
-    let raw = crate::rigid::clusters(&ctx, &sub);
-    let decomposition = options.decompose.then(|| {
-        let mut d = crate::wdec::Decomposer::new(&ctx, coords, options.removal_order)
-            .with_budget(options.decomposition_budget);
-        let mut trees = Vec::new();
-        // In the order of the finished clusters (sorted by first entity, segments added).
-        let finished = finish_clusters(system, &sub, raw.clone());
-        for c in &finished {
-            let groups = sub
-                .groups
-                .iter()
-                .filter(|g| match g.label {
-                    crate::rigid::Label::Constraint(ci) => c.constraints.contains(&ci),
-                    crate::rigid::Label::Virtual(_) => false,
-                })
-                .cloned()
-                .collect();
-            let entities: Vec<EntityIdx> =
-                c.entities.iter().copied().filter(|e| layout.repr(*e).is_some()).collect();
-            let csub = crate::rigid::Subsystem { entities, groups };
-            let mut tree = d.decompose(&csub);
-            // The root is the cluster itself, as reported.
-            tree.entities = c.entities.clone();
-            tree.constraints = c.constraints.clone();
-            trees.push(tree);
-        }
-        (trees, d.stats)
-    });
-    Ok((finish_clusters(system, &sub, raw), decomposition))
-}
-
-/// Adds segments to the clusters holding both their points (a segment in none gets its own),
-/// names the constraints, and sorts.
-pub(crate) fn finish_clusters<F>(
-    system: &System,
-    sub: &crate::rigid::Subsystem<F>,
-    raw: Vec<crate::rigid::RawCluster>,
-) -> Vec<Cluster> {
-    // Segments join the clusters holding both their points.
-    let mut of_entity: std::collections::HashMap<EntityIdx, Vec<usize>> = Default::default();
-    for (i, r) in raw.iter().enumerate() {
-        for e in &r.entities {
-            of_entity.entry(*e).or_default().push(i);
-        }
-    }
-    let mut segments: Vec<Vec<EntityIdx>> = vec![Vec::new(); raw.len()];
-    let mut lonely: Vec<EntityIdx> = Vec::new();
-    for e in system.entity_indices() {
-        if let Some((a, b)) = system.segment_points(e) {
-            let (ca, cb) = (of_entity.get(&a), of_entity.get(&b));
-            let both: Vec<usize> = ca
-                .into_iter()
-                .flatten()
-                .copied()
-                .filter(|c| cb.is_some_and(|l| l.contains(c)))
-                .collect();
-            if both.is_empty() {
-                lonely.push(e);
-            }
-            for c in both {
-                segments[c].push(e);
-            }
-        }
-    }
-    let mut out: Vec<Cluster> = raw
-        .into_iter()
-        .zip(segments)
-        .map(|(r, segs)| {
-            let mut entities = r.entities.clone();
-            entities.extend(segs);
-            entities.sort_unstable();
-            let constraints = r
-                .groups
-                .iter()
-                .filter_map(|g| match sub.groups[*g].label {
-                    crate::rigid::Label::Constraint(c) => Some(c),
-                    crate::rigid::Label::Virtual(_) => None,
-                })
-                .collect();
-            Cluster { entities, constraints, grounded: r.grounded }
-        })
-        .collect();
-    for e in lonely {
-        let constraints = system
-            .constraint_indices()
-            .filter(|c| system.constraint(*c).signature.entities() == vec![e])
-            .collect();
-        out.push(Cluster { entities: vec![e], constraints, grounded: false });
-    }
-    out.sort_by(|a, b| a.entities.cmp(&b.entities));
-    out
-}
 
 fn row_owners(system: &System, layout: &Layout, witness: &Witness) -> Vec<RowOwner> {
     let mut owners = Vec::new();
@@ -662,128 +594,5 @@ fn rug_backend(
 impl From<JacobianError> for AnalysisError {
     fn from(e: JacobianError) -> Self {
         AnalysisError::Witness(e)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Whether the open-chain shortcut applies to a model of `data/` (modulo the prime, at the
-    /// default witness), and whether its clusters then equal the general search's.
-    fn shortcut(name: &str) -> bool {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data").join(name);
-        let text = std::fs::read_to_string(&path).unwrap();
-        shortcut_on(&System::from_ron_str(&text, Some(name)).unwrap(), name)
-    }
-
-    fn shortcut_on(system: &System, name: &str) -> bool {
-        let system = system.clone();
-        let layout = Layout::new(&system);
-        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
-        let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
-        let coords: Vec<ModP> = witness.coords_in().unwrap();
-        let generators = motions::generators::<ModP>(&system, &layout, &coords).unwrap();
-        let mut ctx = crate::rigid::Context::new(
-            &system,
-            &layout,
-            &jacobian,
-            generators,
-            EchelonOptions::default(),
-        );
-        let groups = ctx.constraint_groups(&jacobian);
-        let entities: Vec<EntityIdx> =
-            system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
-        let sub = crate::rigid::Subsystem { entities, groups };
-        let Some(mut fast) = crate::rigid::open_chain(&ctx, &sub) else { return false };
-        fast.sort_by(|a, b| a.entities.cmp(&b.entities));
-        ctx.method = ClusterMethod::Kernel;
-        assert_eq!(fast, crate::rigid::clusters(&ctx, &sub), "{name}");
-        true
-    }
-
-    /// The default analysis, and its clusters as lists of entity ids.
-    fn clusters_by_id(system: &System) -> (Analysis, Vec<Vec<String>>) {
-        let a = analyze(system, &AnalysisOptions::default()).unwrap();
-        let ids = |c: &Cluster| -> Vec<String> {
-            c.entities.iter().map(|e| system.entity(*e).id.clone()).collect()
-        };
-        let clusters = a.clusters.iter().map(ids).collect();
-        (a, clusters)
-    }
-
-    #[test]
-    fn the_open_chain_shortcut_applies_to_open_chains_only() {
-        // Fig. 7: three triangles articulated at p3 and p5; the butterfly: two at p0.
-        assert!(shortcut("paper/chain.ron"));
-        assert!(shortcut("paper/butterfly.ron"));
-        // One rigid block: the whole system.
-        assert!(shortcut("paper/kite.ron"));
-        // A closed non-rigid chain (the four-bar linkage) and absolute constraints (the CAD
-        // rectangle's frame): not an open chain, the general search decides.
-        assert!(!shortcut("sketches/four_bar.ron"));
-        assert!(!shortcut("sketches/rectangle.ron"));
-        let square = gcs_model::generate::framework(
-            "square",
-            gcs_model::Dim::Two,
-            &[vec![0, 0], vec![4, 1], vec![5, 5], vec![1, 4]],
-            &[(0, 1), (1, 2), (2, 3), (3, 0)],
-        );
-        assert!(!shortcut_on(&square, "square"));
-    }
-
-    /// Two rigid bodies sharing the line `l` slide along it; the line `m` of the second body,
-    /// parallel to `l`, does not move in the slide, so it belongs to the first body's cluster
-    /// too. Blocks alone would miss it: the shortcut must stand down (here by its condition 2:
-    /// the group of the parallel lines has a low degree of rigidity).
-    #[test]
-    fn the_open_chain_shortcut_stands_down_for_an_entity_its_hinge_cannot_move() {
-        let text = r#"System(name: "slide", dim: 2,
-            entities: [
-                Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]),
-                Line(id: "l", at: [[0, 0], [1, 0]]), Line(id: "m", at: [[0, 3], [1, 3]]),
-                Point(id: "c", at: [2, 3]), Point(id: "d", at: [7, 3]),
-            ],
-            constraints: [
-                Incident(id: "al", a: "a", b: "l"), Incident(id: "bl", a: "b", b: "l"),
-                Distance(id: "ab", a: "a", b: "b", value: 4),
-                Parallel(id: "lm", a: "l", b: "m"), Distance(id: "dlm", a: "l", b: "m", value: 3),
-                Incident(id: "cm", a: "c", b: "m"), Incident(id: "dm", a: "d", b: "m"),
-                Distance(id: "cd", a: "c", b: "d", value: 5),
-            ])"#;
-        let system = System::from_ron_str(text, None).unwrap();
-        assert!(!shortcut_on(&system, "slide"));
-        let (_, clusters) = clusters_by_id(&system);
-        assert_eq!(clusters, [["a", "b", "l", "m"], ["l", "m", "c", "d"]], "{clusters:?}");
-    }
-
-    /// Two rigid bodies hinged at `h`; the sketch (a witness: the rank is generic) puts `y`,
-    /// a point of the second body, on `h`. Rotating the second body about `h` does not move
-    /// `y`, so at this witness `y` is in the first body's cluster too — which the blocks
-    /// alone would miss. Every block is rigid here: condition 5 is what stands the shortcut
-    /// down.
-    #[test]
-    fn the_open_chain_shortcut_stands_down_for_a_point_on_its_hinge() {
-        let text = r#"System(name: "pinned", dim: 2,
-            entities: [
-                Point(id: "h", at: [0, 0]), Point(id: "a", at: [-3, 4]),
-                Point(id: "b", at: [-3, -4]), Point(id: "c", at: [3, 4]),
-                Point(id: "d", at: [3, -4]), Point(id: "y", at: [0, 0]),
-            ],
-            constraints: [
-                Distance(id: "ha", a: "h", b: "a", value: 5),
-                Distance(id: "hb", a: "h", b: "b", value: 5),
-                Distance(id: "ab", a: "a", b: "b", value: 8),
-                Distance(id: "hc", a: "h", b: "c", value: 5),
-                Distance(id: "hd", a: "h", b: "d", value: 5),
-                Distance(id: "cd", a: "c", b: "d", value: 8),
-                Distance(id: "cy", a: "c", b: "y", value: 5),
-                Distance(id: "dy", a: "d", b: "y", value: 5),
-            ])"#;
-        let system = System::from_ron_str(text, None).unwrap();
-        assert!(!shortcut_on(&system, "pinned"));
-        let (a, clusters) = clusters_by_id(&system);
-        assert_eq!(a.witness.source, WitnessSource::Sketch);
-        assert_eq!(clusters, [["h", "a", "b", "y"], ["h", "c", "d", "y"]], "{clusters:?}");
     }
 }

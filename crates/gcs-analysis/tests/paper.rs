@@ -13,7 +13,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use gcs_decompose::{Analysis, AnalysisOptions, DecompositionNode, analyze};
+use gcs_analysis::{Analysis, AnalysisOptions, DecompositionNode, analyze};
 use gcs_jacobian::{Layout, RowOwner, WitnessOptions, WitnessSource, find_witness};
 use gcs_model::System;
 use gcs_rank::{BigRational, Echelon, EchelonOptions, Insertion, SparseRow};

@@ -4,7 +4,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use gcs_decompose::{
+use gcs_analysis::{
     Analysis, AnalysisOptions, Backend, ClusterMethod, DecompositionNode, RemovalOrder, analyze,
 };
 use gcs_model::generate::{framework, laman_edges, random_coords};

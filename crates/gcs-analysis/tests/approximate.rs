@@ -3,7 +3,7 @@
 //! approximate point would be a silent wrong answer), the float backend analyses there and the
 //! report says the witness is approximate.
 
-use gcs_decompose::{AnalysisError, AnalysisOptions, Backend, analyze};
+use gcs_analysis::{AnalysisError, AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessSource;
 use gcs_model::System;
 

@@ -1,0 +1,304 @@
+//! The clusters of a system at a witness, as the analysis reports them (format §2,
+//! `clusters`), and their W-decompositions (§3, `decomposition`): the public face of
+//! [`crate::rigid`] and [`crate::wdec`].
+
+use gcs_jacobian::{Jacobian, JacobianError, Layout, motions};
+use gcs_model::{ConstraintIdx, EntityIdx, System};
+use gcs_rank::{EchelonOptions, Field};
+
+use crate::rigid::ClusterMethod;
+use crate::wdec::{DecompositionNode, RemovalOrder, Statistics};
+
+/// A maximal rigid subsystem (format §2, `clusters`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Cluster {
+    /// Its entities, in file order (segments whose two points are in it included).
+    pub entities: Vec<EntityIdx>,
+    /// The constraints among its entities, in file order.
+    pub constraints: Vec<ConstraintIdx>,
+    /// Whether absolute constraints (`Fix`, `Horizontal`, `Vertical`) hold it in place.
+    pub grounded: bool,
+}
+
+/// The W-decompositions of the clusters (one tree per cluster, in the order of the clusters)
+/// and the work they took.
+pub type Decomposition = (Vec<DecompositionNode>, Statistics);
+
+/// How [`clusters`] works.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClusterOptions {
+    /// How clusters are found.
+    pub method: ClusterMethod,
+    /// Whether to W-decompose every cluster (witness paper §5).
+    pub decompose: bool,
+    /// Which constraint the W-decomposition tries to remove first.
+    pub removal_order: RemovalOrder,
+    /// The most maximal rigid subsystem computations a W-decomposition may spend (each one
+    /// elimination); past it, the subsystems not yet examined are reported as leaves and the
+    /// statistics say the decomposition is incomplete.
+    pub decomposition_budget: usize,
+}
+
+impl Default for ClusterOptions {
+    fn default() -> Self {
+        ClusterOptions {
+            method: ClusterMethod::default(),
+            decompose: false,
+            removal_order: RemovalOrder::default(),
+            decomposition_budget: 20_000,
+        }
+    }
+}
+
+/// The clusters (maximal rigid subsystems) of a whole system at a witness, computed in the
+/// field `F`: `jacobian` is the Jacobian at `coords` (see `gcs_jacobian::Witness::jacobian`),
+/// `echelon` the elimination options (a tolerance for `f64`); with
+/// [`ClusterOptions::decompose`], the W-decomposition of every cluster too.
+///
+/// # Errors
+/// When the displacement generators have no image in `F` (homogeneous coordinates of zero
+/// norm: impossible over ℚ, negligibly likely modulo a large prime).
+pub fn clusters<F: Field>(
+    system: &System,
+    layout: &Layout,
+    jacobian: &Jacobian<F>,
+    coords: Vec<F>,
+    echelon: EchelonOptions,
+    options: &ClusterOptions,
+) -> Result<(Vec<Cluster>, Option<Decomposition>), JacobianError> {
+    let generators = motions::generators::<F>(system, layout, &coords)?;
+    let mut ctx = crate::rigid::Context::new(system, layout, jacobian, generators, echelon);
+    ctx.method = options.method;
+    let groups = ctx.constraint_groups(jacobian);
+    let entities: Vec<EntityIdx> =
+        system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
+    let sub = crate::rigid::Subsystem { entities, groups };
+    let raw = crate::rigid::clusters(&ctx, &sub);
+    let decomposition = options.decompose.then(|| {
+        let mut d = crate::wdec::Decomposer::new(&ctx, coords, options.removal_order)
+            .with_budget(options.decomposition_budget);
+        let mut trees = Vec::new();
+        // In the order of the finished clusters (sorted by first entity, segments added).
+        let finished = finish_clusters(system, &sub, raw.clone());
+        for c in &finished {
+            let groups = sub
+                .groups
+                .iter()
+                .filter(|g| match g.label {
+                    crate::rigid::Label::Constraint(ci) => c.constraints.contains(&ci),
+                    crate::rigid::Label::Virtual(_) => false,
+                })
+                .cloned()
+                .collect();
+            let entities: Vec<EntityIdx> =
+                c.entities.iter().copied().filter(|e| layout.repr(*e).is_some()).collect();
+            let csub = crate::rigid::Subsystem { entities, groups };
+            let mut tree = d.decompose(&csub);
+            // The root is the cluster itself, as reported.
+            tree.entities = c.entities.clone();
+            tree.constraints = c.constraints.clone();
+            trees.push(tree);
+        }
+        (trees, d.stats)
+    });
+    Ok((finish_clusters(system, &sub, raw), decomposition))
+}
+
+/// Adds segments to the clusters holding both their points (a segment in none gets its own),
+/// names the constraints, and sorts.
+fn finish_clusters<F>(
+    system: &System,
+    sub: &crate::rigid::Subsystem<F>,
+    raw: Vec<crate::rigid::RawCluster>,
+) -> Vec<Cluster> {
+    // Segments join the clusters holding both their points.
+    let mut of_entity: std::collections::HashMap<EntityIdx, Vec<usize>> = Default::default();
+    for (i, r) in raw.iter().enumerate() {
+        for e in &r.entities {
+            of_entity.entry(*e).or_default().push(i);
+        }
+    }
+    let mut segments: Vec<Vec<EntityIdx>> = vec![Vec::new(); raw.len()];
+    let mut lonely: Vec<EntityIdx> = Vec::new();
+    for e in system.entity_indices() {
+        if let Some((a, b)) = system.segment_points(e) {
+            let (ca, cb) = (of_entity.get(&a), of_entity.get(&b));
+            let both: Vec<usize> = ca
+                .into_iter()
+                .flatten()
+                .copied()
+                .filter(|c| cb.is_some_and(|l| l.contains(c)))
+                .collect();
+            if both.is_empty() {
+                lonely.push(e);
+            }
+            for c in both {
+                segments[c].push(e);
+            }
+        }
+    }
+    let mut out: Vec<Cluster> = raw
+        .into_iter()
+        .zip(segments)
+        .map(|(r, segs)| {
+            let mut entities = r.entities.clone();
+            entities.extend(segs);
+            entities.sort_unstable();
+            let constraints = r
+                .groups
+                .iter()
+                .filter_map(|g| match sub.groups[*g].label {
+                    crate::rigid::Label::Constraint(c) => Some(c),
+                    crate::rigid::Label::Virtual(_) => None,
+                })
+                .collect();
+            Cluster { entities, constraints, grounded: r.grounded }
+        })
+        .collect();
+    for e in lonely {
+        let constraints = system
+            .constraint_indices()
+            .filter(|c| system.constraint(*c).signature.entities() == vec![e])
+            .collect();
+        out.push(Cluster { entities: vec![e], constraints, grounded: false });
+    }
+    out.sort_by(|a, b| a.entities.cmp(&b.entities));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gcs_jacobian::{WitnessOptions, WitnessSource, find_witness};
+    use gcs_rank::ModP;
+
+    /// Whether the open-chain shortcut applies to a model of `data/` (modulo the prime, at the
+    /// default witness), and whether its clusters then equal the general search's.
+    fn shortcut(name: &str) -> bool {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data").join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        shortcut_on(&System::from_ron_str(&text, Some(name)).unwrap(), name)
+    }
+
+    fn shortcut_on(system: &System, name: &str) -> bool {
+        let system = system.clone();
+        let layout = Layout::new(&system);
+        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+        let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
+        let coords: Vec<ModP> = witness.coords_in().unwrap();
+        let generators = motions::generators::<ModP>(&system, &layout, &coords).unwrap();
+        let mut ctx = crate::rigid::Context::new(
+            &system,
+            &layout,
+            &jacobian,
+            generators,
+            EchelonOptions::default(),
+        );
+        let groups = ctx.constraint_groups(&jacobian);
+        let entities: Vec<EntityIdx> =
+            system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
+        let sub = crate::rigid::Subsystem { entities, groups };
+        let Some(mut fast) = crate::rigid::open_chain(&ctx, &sub) else { return false };
+        fast.sort_by(|a, b| a.entities.cmp(&b.entities));
+        ctx.method = ClusterMethod::Kernel;
+        assert_eq!(fast, crate::rigid::clusters(&ctx, &sub), "{name}");
+        true
+    }
+
+    /// The clusters at the default witness (modulo the prime), as lists of entity ids, and
+    /// where the witness came from.
+    fn clusters_by_id(system: &System) -> (WitnessSource, Vec<Vec<String>>) {
+        let layout = Layout::new(system);
+        let witness = find_witness(system, &layout, &WitnessOptions::default()).unwrap();
+        let jacobian: Jacobian<ModP> = witness.jacobian(system, &layout).unwrap();
+        let coords: Vec<ModP> = witness.coords_in().unwrap();
+        let (found, _) = clusters(
+            system,
+            &layout,
+            &jacobian,
+            coords,
+            EchelonOptions::default(),
+            &ClusterOptions::default(),
+        )
+        .unwrap();
+        let ids = |c: &Cluster| -> Vec<String> {
+            c.entities.iter().map(|e| system.entity(*e).id.clone()).collect()
+        };
+        (witness.source, found.iter().map(ids).collect())
+    }
+
+    #[test]
+    fn the_open_chain_shortcut_applies_to_open_chains_only() {
+        // Fig. 7: three triangles articulated at p3 and p5; the butterfly: two at p0.
+        assert!(shortcut("paper/chain.ron"));
+        assert!(shortcut("paper/butterfly.ron"));
+        // One rigid block: the whole system.
+        assert!(shortcut("paper/kite.ron"));
+        // A closed non-rigid chain (the four-bar linkage) and absolute constraints (the CAD
+        // rectangle's frame): not an open chain, the general search decides.
+        assert!(!shortcut("sketches/four_bar.ron"));
+        assert!(!shortcut("sketches/rectangle.ron"));
+        let square = gcs_model::generate::framework(
+            "square",
+            gcs_model::Dim::Two,
+            &[vec![0, 0], vec![4, 1], vec![5, 5], vec![1, 4]],
+            &[(0, 1), (1, 2), (2, 3), (3, 0)],
+        );
+        assert!(!shortcut_on(&square, "square"));
+    }
+
+    /// Two rigid bodies sharing the line `l` slide along it; the line `m` of the second body,
+    /// parallel to `l`, does not move in the slide, so it belongs to the first body's cluster
+    /// too. Blocks alone would miss it: the shortcut must stand down (here by its condition 2:
+    /// the group of the parallel lines has a low degree of rigidity).
+    #[test]
+    fn the_open_chain_shortcut_stands_down_for_an_entity_its_hinge_cannot_move() {
+        let text = r#"System(name: "slide", dim: 2,
+            entities: [
+                Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]),
+                Line(id: "l", at: [[0, 0], [1, 0]]), Line(id: "m", at: [[0, 3], [1, 3]]),
+                Point(id: "c", at: [2, 3]), Point(id: "d", at: [7, 3]),
+            ],
+            constraints: [
+                Incident(id: "al", a: "a", b: "l"), Incident(id: "bl", a: "b", b: "l"),
+                Distance(id: "ab", a: "a", b: "b", value: 4),
+                Parallel(id: "lm", a: "l", b: "m"), Distance(id: "dlm", a: "l", b: "m", value: 3),
+                Incident(id: "cm", a: "c", b: "m"), Incident(id: "dm", a: "d", b: "m"),
+                Distance(id: "cd", a: "c", b: "d", value: 5),
+            ])"#;
+        let system = System::from_ron_str(text, None).unwrap();
+        assert!(!shortcut_on(&system, "slide"));
+        let (_, clusters) = clusters_by_id(&system);
+        assert_eq!(clusters, [["a", "b", "l", "m"], ["l", "m", "c", "d"]], "{clusters:?}");
+    }
+
+    /// Two rigid bodies hinged at `h`; the sketch (a witness: the rank is generic) puts `y`,
+    /// a point of the second body, on `h`. Rotating the second body about `h` does not move
+    /// `y`, so at this witness `y` is in the first body's cluster too — which the blocks
+    /// alone would miss. Every block is rigid here: condition 5 is what stands the shortcut
+    /// down.
+    #[test]
+    fn the_open_chain_shortcut_stands_down_for_a_point_on_its_hinge() {
+        let text = r#"System(name: "pinned", dim: 2,
+            entities: [
+                Point(id: "h", at: [0, 0]), Point(id: "a", at: [-3, 4]),
+                Point(id: "b", at: [-3, -4]), Point(id: "c", at: [3, 4]),
+                Point(id: "d", at: [3, -4]), Point(id: "y", at: [0, 0]),
+            ],
+            constraints: [
+                Distance(id: "ha", a: "h", b: "a", value: 5),
+                Distance(id: "hb", a: "h", b: "b", value: 5),
+                Distance(id: "ab", a: "a", b: "b", value: 8),
+                Distance(id: "hc", a: "h", b: "c", value: 5),
+                Distance(id: "hd", a: "h", b: "d", value: 5),
+                Distance(id: "cd", a: "c", b: "d", value: 8),
+                Distance(id: "cy", a: "c", b: "y", value: 5),
+                Distance(id: "dy", a: "d", b: "y", value: 5),
+            ])"#;
+        let system = System::from_ron_str(text, None).unwrap();
+        assert!(!shortcut_on(&system, "pinned"));
+        let (source, clusters) = clusters_by_id(&system);
+        assert_eq!(source, WitnessSource::Sketch);
+        assert_eq!(clusters, [["h", "a", "b", "y"], ["h", "c", "d", "y"]], "{clusters:?}");
+    }
+}
