@@ -13,10 +13,10 @@
 //!
 //! Cases where one analysis takes more than a few seconds are left out ([`measured`]); the
 //! probe mode (`GCS_BENCH_PROBE=1`) times every case once instead, and `BENCHMARKS.md` has
-//! both. The rug backend is included when gcs-decompose has its `rug` feature.
+//! both. The rug backend is included when gcs-analysis has its `rug` feature.
 //!
 //! Run: `cargo bench --bench analysis` (with GMP: `cargo bench --bench analysis --features
-//! gcs-decompose/rug`); one family: `cargo bench --bench analysis -- rectangles`.
+//! gcs-analysis/rug`); one family: `cargo bench --bench analysis -- rectangles`.
 
 use std::hint::black_box;
 use std::time::Duration;

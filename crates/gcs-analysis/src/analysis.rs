@@ -224,7 +224,10 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
     if witness.source == WitnessSource::Approximate
         && !matches!(options.backend, Backend::Float { .. })
     {
-        let why = witness.sketch_rejected.clone().unwrap_or_default();
+        let why = witness.no_exact_witness.clone().unwrap_or(gcs_jacobian::NoWitness {
+            sketch: witness.sketch_rejected.clone(),
+            placement: None,
+        });
         return Err(AnalysisError::ApproximateWitness(why));
     }
     analyze_at(system, &layout, witness, options)

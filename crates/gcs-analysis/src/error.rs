@@ -17,10 +17,10 @@ pub enum AnalysisError {
     /// Only an approximate witness exists (a numerical projection), and the backend is exact:
     /// deciding an exact rank at an approximate point would be a silent wrong answer.
     #[error(
-        "no exact witness ({0}); a numerical projection of the sketch found an approximate one: rerun with --backend float to analyse there"
+        "no exact witness ({0}); a numerical projection of the sketch found an approximate one, which only the float backend analyses"
     )]
-    ApproximateWitness(String),
+    ApproximateWitness(gcs_jacobian::NoWitness),
     /// The backend was not compiled in.
-    #[error("backend {0} is not available in this build (rebuild with --features {0})")]
+    #[error("backend {0} is not available in this build (it needs the cargo feature \"{0}\")")]
     BackendUnavailable(&'static str),
 }

@@ -104,7 +104,7 @@ impl Out {
     /// Reports a file that failed: its JSON line, or `error: …` on standard error.
     pub(crate) fn failure(&mut self, format: crate::Format, file: &str, message: &str) {
         match format {
-            crate::Format::Json => self.line(&json_error(file, message)),
+            crate::Format::Json => self.line(&gcs_report::failure_json(file, message)),
             crate::Format::Text => {
                 self.flush();
                 eprintln!("error: {message}");
@@ -116,15 +116,4 @@ impl Out {
 /// Exit status of a batch: 0 when every file went through, 1 otherwise.
 pub(crate) fn status(failed: usize) -> ExitCode {
     if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
-}
-
-/// The JSON line of a file that failed.
-pub(crate) fn json_error(file: &str, message: &str) -> String {
-    #[derive(serde::Serialize)]
-    struct Failure<'a> {
-        schema: u32,
-        file: &'a str,
-        error: &'a str,
-    }
-    serde_json::to_string(&Failure { schema: 1, file, error: message }).unwrap_or_default()
 }

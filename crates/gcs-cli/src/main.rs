@@ -2,15 +2,14 @@
 //!
 //! This binary is glue: it reads files, picks what to run, and prints reports. The analysis
 //! lives in the library crates (`gcs-model`, `gcs-rank`, `gcs-jacobian`, `gcs-rigidity`,
-//! `gcs-decompose`). It is the only crate of the workspace that touches files and terminals.
+//! `gcs-decompose`, `gcs-analysis`), the reports and their renderers in `gcs-report`. It is
+//! the only crate of the workspace that touches files and terminals.
 
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
 mod analyze;
 mod batch;
 mod check;
-mod decompose;
-mod structural;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -192,6 +192,37 @@ fn a_bad_file_is_reported_and_the_batch_goes_on() {
     );
 }
 
+/// A sketch without a rational witness (a point on two circles whose intersection is
+/// irrational): the exact backend fails with the entity and constraints at fault, and the CLI
+/// (not the library) suggests the float backend, which analyses it.
+#[test]
+fn an_approximate_witness_is_refused_with_a_hint() {
+    let dir = std::env::temp_dir().join(format!("gcs-approximate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("two_circles.ron");
+    std::fs::write(
+        &file,
+        r#"System(dim: 2,
+  entities: [Circle(id: "k1", center: [0, 0], radius: 2), Circle(id: "k2", center: [3, 0], radius: 2),
+             Point(id: "p", at: [1.5, 1.3229])],
+  constraints: [Fix(id: "f1", a: "k1"), Fix(id: "f2", a: "k2"),
+                Incident(id: "i1", a: "p", b: "k1"), Incident(id: "i2", a: "p", b: "k2")])"#,
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let (code, _, stderr) = gcs(&["analyze", path]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("entity \"p\" cannot be placed rationally"), "{stderr}");
+    assert!(
+        stderr.trim_end().ends_with("rerun with --backend float to analyse it there"),
+        "{stderr}"
+    );
+    let (code, stdout, _) = gcs(&["analyze", "--backend", "float", "--format", "json", path]);
+    assert_eq!(code, 0);
+    assert_eq!(json_lines(&stdout)[0]["witness"], "approximate");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn the_float_backend_reports_its_tolerance() {
     let file = "data/paper/kite.ron";

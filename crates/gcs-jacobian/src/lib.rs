@@ -57,7 +57,7 @@ mod witness;
 
 pub use dual::Dual;
 pub use equations::{Equations, Residual};
-pub use error::JacobianError;
+pub use error::{JacobianError, NoWitness, Rejection};
 pub use jacobian::{Jacobian, RowOwner, assemble, relation_row};
 pub use layout::Layout;
 pub use repr::Repr;

@@ -30,9 +30,9 @@ pub fn generators<F: Field>(
         let cols = layout.columns(e);
         let x = &witness[cols.clone()];
         for (g, column) in t.iter_mut().enumerate() {
-            let vel = repr.velocity(x, g).ok_or_else(|| {
-                JacobianError::NotAWitness("homogeneous coordinates of zero norm".into())
-            })?;
+            let vel = repr
+                .velocity(x, g)
+                .ok_or_else(|| JacobianError::ZeroNorm { entity: system.entity(e).id.clone() })?;
             for (c, v) in cols.clone().zip(vel) {
                 column[c] = v;
             }

@@ -18,7 +18,7 @@ use gcs_model::rng::SplitMix64;
 use gcs_model::{EntityIdx, System};
 use gcs_rank::{BigRational, EchelonOptions, Field, ModP, Rat};
 
-use crate::error::JacobianError;
+use crate::error::{JacobianError, NoWitness, Rejection};
 use crate::jacobian::{Jacobian, assemble};
 use crate::layout::Layout;
 use crate::place::{self, PlaceOptions};
@@ -80,8 +80,10 @@ pub struct Witness {
     /// Whether the genericity of a sketch witness could be tested (false when no perturbation
     /// could be constructed).
     pub genericity_tested: bool,
-    /// When the sketch was not used, why (for the report).
-    pub sketch_rejected: Option<String>,
+    /// When the sketch was not used as it is, why not.
+    pub sketch_rejected: Option<Rejection>,
+    /// For an approximate witness, why no exact one was found.
+    pub no_exact_witness: Option<NoWitness>,
 }
 
 fn sketch_fn(system: &System) -> impl Fn(EntityIdx) -> Option<Vec<Rat>> + '_ {
@@ -114,15 +116,14 @@ impl Witness {
     }
 }
 
-fn describe(system: &System, u: &Unsatisfied) -> String {
+fn describe(system: &System, u: &Unsatisfied) -> Rejection {
     match u {
         Unsatisfied::Constraint(c) => {
-            format!("constraint \"{}\" does not hold in the sketch", system.constraint(*c).id)
+            Rejection::Unsatisfied { constraint: system.constraint(*c).id.clone() }
         }
-        Unsatisfied::NotParallel(c) => format!(
-            "constraint \"{}\": a distance between lines or planes that are not parallel",
-            system.constraint(*c).id
-        ),
+        Unsatisfied::NotParallel(c) => {
+            Rejection::NotParallel { constraint: system.constraint(*c).id.clone() }
+        }
     }
 }
 
@@ -166,7 +167,7 @@ pub fn find_witness(
             Err(u) => sketch_rejected = Some(describe(system, &u)),
         }
     } else {
-        sketch_rejected = Some("the sketch is incomplete".into());
+        sketch_rejected = Some(Rejection::Incomplete);
     }
     let mut tested = false;
     let mut failure = None;
@@ -193,16 +194,14 @@ pub fn find_witness(
                 Err(u) => failure = Some(describe(system, &u)),
             },
             Err(f) => {
-                let ids: Vec<String> = f
-                    .constraints
-                    .iter()
-                    .map(|c| format!("\"{}\"", system.constraint(*c).id))
-                    .collect();
-                failure = Some(format!(
-                    "entity \"{}\" cannot be placed rationally under {}",
-                    system.entity(f.entity).id,
-                    if ids.is_empty() { "its constraints".to_owned() } else { ids.join(", ") }
-                ));
+                failure = Some(Rejection::Unplaceable {
+                    entity: system.entity(f.entity).id.clone(),
+                    constraints: f
+                        .constraints
+                        .iter()
+                        .map(|c| system.constraint(*c).id.clone())
+                        .collect(),
+                });
             }
         }
     }
@@ -213,12 +212,10 @@ pub fn find_witness(
             plan,
             genericity_tested: tested,
             sketch_rejected,
+            no_exact_witness: None,
         }),
         None => {
-            let mut msg = failure.unwrap_or_else(|| "no placement found".into());
-            if let Some(s) = &sketch_rejected {
-                msg = format!("{s}, and {msg}");
-            }
+            let msg = NoWitness { sketch: sketch_rejected.clone(), placement: failure };
             // Last resort: project the sketch numerically onto the constraints.
             let start: Vec<f64> = pref.iter().map(Rat::to_f64).collect();
             let Some(x) = crate::project::project(system, layout, &start, scale) else {
@@ -243,7 +240,8 @@ pub fn find_witness(
                     source: WitnessSource::Approximate,
                     plan,
                     genericity_tested: false,
-                    sketch_rejected: Some(msg),
+                    sketch_rejected,
+                    no_exact_witness: Some(msg),
                 }),
                 Err(_) => Err(JacobianError::NoWitness(msg)),
             }

@@ -1,22 +1,28 @@
-//! Rendering clusters and W-decompositions: JSON (format §2–§3), text trees, Graphviz DOT.
+//! Clusters and W-decompositions in reports: as data (format §2 `clusters`, §3
+//! `decomposition`), as text trees, and as a Graphviz DOT graph.
 
 use gcs_analysis::{Cluster, DecompositionNode};
 use gcs_model::{ConstraintIdx, EntityIdx, System};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-/// A cluster in the JSON report.
-#[derive(Serialize)]
-pub(crate) struct ClusterJson {
-    entities: Vec<String>,
-    constraints: Vec<String>,
+/// A cluster (format §2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ClusterReport {
+    /// Its entities, in file order.
+    pub entities: Vec<String>,
+    /// The constraints among them, in file order.
+    pub constraints: Vec<String>,
 }
 
-/// A node of the decomposition in the JSON report.
-#[derive(Serialize)]
-pub(crate) struct NodeJson {
-    entities: Vec<String>,
-    constraints: Vec<String>,
-    children: Vec<NodeJson>,
+/// A node of a W-decomposition (format §3).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NodeReport {
+    /// Its entities, in file order.
+    pub entities: Vec<String>,
+    /// The constraints among them.
+    pub constraints: Vec<String>,
+    /// The rigid subsystems it decomposes into.
+    pub children: Vec<NodeReport>,
 }
 
 fn entity_ids(system: &System, es: &[EntityIdx]) -> Vec<String> {
@@ -27,21 +33,23 @@ fn constraint_ids(system: &System, cs: &[ConstraintIdx]) -> Vec<String> {
     cs.iter().map(|c| system.constraint(*c).id.clone()).collect()
 }
 
-pub(crate) fn clusters_json(system: &System, clusters: &[Cluster]) -> Vec<ClusterJson> {
+/// The clusters as report data.
+pub fn clusters_report(system: &System, clusters: &[Cluster]) -> Vec<ClusterReport> {
     clusters
         .iter()
-        .map(|c| ClusterJson {
+        .map(|c| ClusterReport {
             entities: entity_ids(system, &c.entities),
             constraints: constraint_ids(system, &c.constraints),
         })
         .collect()
 }
 
-pub(crate) fn tree_json(system: &System, node: &DecompositionNode) -> NodeJson {
-    NodeJson {
+/// A decomposition tree as report data.
+pub fn tree_report(system: &System, node: &DecompositionNode) -> NodeReport {
+    NodeReport {
         entities: entity_ids(system, &node.entities),
         constraints: constraint_ids(system, &node.constraints),
-        children: node.children.iter().map(|c| tree_json(system, c)).collect(),
+        children: node.children.iter().map(|c| tree_report(system, c)).collect(),
     }
 }
 
@@ -65,7 +73,7 @@ fn short(system: &System, es: &[EntityIdx]) -> String {
 }
 
 /// The clusters as text lines.
-pub(crate) fn clusters_text(system: &System, clusters: &[Cluster]) -> Vec<String> {
+pub fn clusters_text(system: &System, clusters: &[Cluster]) -> Vec<String> {
     let mut out = Vec::new();
     let shared = |e: &EntityIdx| clusters.iter().filter(|c| c.entities.contains(e)).count() > 1;
     // Entities rigid with nothing else are listed together, at the end.
@@ -109,7 +117,7 @@ pub(crate) fn clusters_text(system: &System, clusters: &[Cluster]) -> Vec<String
 }
 
 /// A decomposition tree as indented text lines.
-pub(crate) fn tree_text(system: &System, node: &DecompositionNode, out: &mut Vec<String>) {
+pub fn tree_text(system: &System, node: &DecompositionNode, out: &mut Vec<String>) {
     fn walk(
         system: &System,
         node: &DecompositionNode,
@@ -148,7 +156,7 @@ fn dot_escape(s: &str) -> String {
 
 /// The W-decomposition as a Graphviz digraph: one node per rigid subsystem, labelled with its
 /// entity ids, and an edge from each subsystem to the subsystems it decomposes into.
-pub(crate) fn dot(system: &System, trees: &[DecompositionNode]) -> String {
+pub fn dot(system: &System, trees: &[DecompositionNode]) -> String {
     fn walk(
         system: &System,
         node: &DecompositionNode,

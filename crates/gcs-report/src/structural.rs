@@ -1,5 +1,5 @@
-//! `gcs analyze --structural`: the flow-based verdicts and the Dulmage–Mendelsohn decomposition
-//! (FORMAT.md §3, `structural`), and where they disagree with the witness analysis.
+//! The structural section of a report (format §3, `structural`): the flow-based verdicts and
+//! the Dulmage–Mendelsohn decomposition, and where they disagree with the witness analysis.
 //!
 //! Three counting methods run on one object–constraint network: Dense (Hoffmann et al.),
 //! Over-Rigid with the DOR from the rule table, and Over-Rigid with the DOR computed exactly at
@@ -15,10 +15,12 @@ use gcs_rigidity::{
     DmDecomposition, DmPart, DorOracle, Network, Object, RigidityAnalysis, RuleDor, Subsystem,
     Verdict, WitnessDor, dense_analysis_in, dm_decomposition, object_dor, over_rigid_analysis_in,
 };
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-/// What the structural methods say about one system.
-pub(crate) struct Structural {
+use crate::error::ReportError;
+
+/// What the structural methods say about one system, beside its witness analysis.
+pub struct Structural {
     dense: RigidityAnalysis,
     over_rigid: RigidityAnalysis,
     over_rigid_witness: RigidityAnalysis,
@@ -34,10 +36,13 @@ pub(crate) struct Structural {
 impl Structural {
     /// Runs the three flow methods (one network, one base flow) and D-M; the witness DOR is
     /// taken at the witness of `analysis`.
-    pub(crate) fn new(system: &System, analysis: &Analysis) -> Result<Structural, String> {
+    ///
+    /// # Errors
+    /// When the witness DOR cannot be computed at that witness ([`ReportError::Structural`]).
+    pub fn new(system: &System, analysis: &Analysis) -> Result<Structural, ReportError> {
         let layout = Layout::new(system);
         let witness = WitnessDor::from_witness(system, &layout, &analysis.witness)
-            .map_err(|e| e.to_string())?;
+            .map_err(ReportError::Structural)?;
         let rules = RuleDor::for_system(system);
         let mut network = Network::new(system);
         let dense = dense_analysis_in(&mut network);
@@ -57,52 +62,117 @@ impl Structural {
     }
 }
 
+impl Structural {
+    /// The `structural` section of format §3, as data.
+    pub fn report(&self, system: &System) -> StructuralReport {
+        report(system, self)
+    }
+
+    /// The text block of the report: one line per method, the witness analysis, and the
+    /// disagreements with it, explained.
+    pub fn text(&self, system: &System, analysis: &Analysis) -> String {
+        text(system, analysis, self)
+    }
+}
+
 // ---- JSON ----
 
-/// One method's verdict (FORMAT.md §3), with the counts behind it.
-#[derive(Serialize)]
-struct MethodJson {
-    verdict: &'static str,
-    subsystem: Vec<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    dor: Option<String>,
+/// A method's verdict (format §3, `verdict`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VerdictName {
+    /// A subsystem has fewer DOF than the displacements it was charged with.
+    OverRigid,
+    /// The whole system's DOF equals its DOR.
+    WellRigid,
+    /// Otherwise.
+    UnderRigid,
+}
+
+impl From<Verdict> for VerdictName {
+    fn from(v: Verdict) -> Self {
+        match v {
+            Verdict::OverRigid => VerdictName::OverRigid,
+            Verdict::WellRigid => VerdictName::WellRigid,
+            Verdict::UnderRigid => VerdictName::UnderRigid,
+        }
+    }
+}
+
+/// Where a method's degree of rigidity comes from (format §3, `dor`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DorSource {
+    /// The rule table.
+    Rules,
+    /// Exactly, at the witness.
+    Witness,
+}
+
+/// One method's verdict (format §3), with the counts behind it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MethodReport {
+    /// The verdict.
+    pub verdict: VerdictName,
+    /// The over-rigid subsystem's entities (empty when none).
+    pub subsystem: Vec<String>,
+    /// Where the DOR comes from (Over-Rigid only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dor: Option<DorSource>,
     /// The constraints the subsystem induces.
-    subsystem_constraints: Vec<String>,
+    pub subsystem_constraints: Vec<String>,
     /// Whether the subsystem includes the reference frame (its absolute constraints).
-    subsystem_grounded: bool,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    subsystem_dof: Option<i64>,
+    pub subsystem_grounded: bool,
+    /// The subsystem's DOF by count (when over-rigid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subsystem_dof: Option<i64>,
     /// The whole system's DOF by count (the frame's included when there is one).
-    dof: i64,
+    pub dof: i64,
     /// What `dof` is compared with: D for Dense, the whole system's DOR for Over-Rigid.
-    displacements: usize,
-    distribute_calls: usize,
+    pub displacements: usize,
+    /// How many times the flow was asked to distribute an overload.
+    pub distribute_calls: usize,
 }
 
-#[derive(Serialize)]
-struct PartJson {
-    constraints: Vec<String>,
-    entities: Vec<String>,
-    equations: usize,
-    unknowns: usize,
+/// One part of the Dulmage–Mendelsohn decomposition.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PartReport {
+    /// The constraints with an equation node in it.
+    pub constraints: Vec<String>,
+    /// The entities with an unknown node in it.
+    pub entities: Vec<String>,
+    /// Equation nodes.
+    pub equations: usize,
+    /// Unknown nodes.
+    pub unknowns: usize,
 }
 
-#[derive(Serialize)]
-struct DmJson {
-    over: PartJson,
-    well: PartJson,
-    under: PartJson,
-    blocks: Vec<PartJson>,
-    matched: usize,
+/// The Dulmage–Mendelsohn decomposition (format §3, `dm`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DmReport {
+    /// Over-determined part.
+    pub over: PartReport,
+    /// Well-determined part.
+    pub well: PartReport,
+    /// Under-determined part.
+    pub under: PartReport,
+    /// The fine blocks of the well-determined part, in solving order.
+    pub blocks: Vec<PartReport>,
+    /// The size of the maximum matching.
+    pub matched: usize,
 }
 
-/// The `structural` section of a JSON report.
-#[derive(Serialize)]
-pub(crate) struct StructuralJson {
-    dense: MethodJson,
-    over_rigid: MethodJson,
-    over_rigid_witness: MethodJson,
-    dm: DmJson,
+/// The `structural` section of a report (format §3).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StructuralReport {
+    /// Hoffmann et al.'s Dense.
+    pub dense: MethodReport,
+    /// Over-Rigid with the DOR from the rules.
+    pub over_rigid: MethodReport,
+    /// Over-Rigid with the DOR at the witness.
+    pub over_rigid_witness: MethodReport,
+    /// The Dulmage–Mendelsohn decomposition.
+    pub dm: DmReport,
 }
 
 fn entity_ids(system: &System, entities: &[EntityIdx]) -> Vec<String> {
@@ -113,12 +183,12 @@ fn constraint_ids(system: &System, constraints: &[ConstraintIdx]) -> Vec<String>
     constraints.iter().map(|c| system.constraint(*c).id.clone()).collect()
 }
 
-fn method_json(system: &System, a: &RigidityAnalysis, dor: Option<&str>) -> MethodJson {
+fn method_report(system: &System, a: &RigidityAnalysis, dor: Option<DorSource>) -> MethodReport {
     let sub = a.subsystem.as_ref();
-    MethodJson {
-        verdict: a.verdict.as_str(),
+    MethodReport {
+        verdict: a.verdict.into(),
         subsystem: entity_ids(system, &a.subsystem_entities()),
-        dor: dor.map(str::to_owned),
+        dor,
         subsystem_constraints: sub
             .map(|s| constraint_ids(system, &s.constraints))
             .unwrap_or_default(),
@@ -130,8 +200,8 @@ fn method_json(system: &System, a: &RigidityAnalysis, dor: Option<&str>) -> Meth
     }
 }
 
-fn part_json(system: &System, p: &DmPart) -> PartJson {
-    PartJson {
+fn part_report(system: &System, p: &DmPart) -> PartReport {
+    PartReport {
         constraints: constraint_ids(system, &p.constraints),
         entities: entity_ids(system, &p.entities),
         equations: p.equations,
@@ -139,21 +209,17 @@ fn part_json(system: &System, p: &DmPart) -> PartJson {
     }
 }
 
-/// The `structural` object of FORMAT.md §3.
-pub(crate) fn json(system: &System, s: &Structural) -> StructuralJson {
-    StructuralJson {
-        dense: method_json(system, &s.dense, None),
-        over_rigid: method_json(system, &s.over_rigid, Some(&s.over_rigid.dor_source)),
-        over_rigid_witness: method_json(
-            system,
-            &s.over_rigid_witness,
-            Some(&s.over_rigid_witness.dor_source),
-        ),
-        dm: DmJson {
-            over: part_json(system, &s.dm.over),
-            well: part_json(system, &s.dm.well),
-            under: part_json(system, &s.dm.under),
-            blocks: s.dm.blocks.iter().map(|b| part_json(system, b)).collect(),
+/// The `structural` section of format §3, as data.
+pub(crate) fn report(system: &System, s: &Structural) -> StructuralReport {
+    StructuralReport {
+        dense: method_report(system, &s.dense, None),
+        over_rigid: method_report(system, &s.over_rigid, Some(DorSource::Rules)),
+        over_rigid_witness: method_report(system, &s.over_rigid_witness, Some(DorSource::Witness)),
+        dm: DmReport {
+            over: part_report(system, &s.dm.over),
+            well: part_report(system, &s.dm.well),
+            under: part_report(system, &s.dm.under),
+            blocks: s.dm.blocks.iter().map(|b| part_report(system, b)).collect(),
             matched: s.dm.matched,
         },
     }
@@ -189,10 +255,24 @@ fn subsystem_names(system: &System, s: &Subsystem) -> String {
     list(&ids)
 }
 
-/// The method names, the way the text report spells them.
-const DENSE: &str = "Dense";
-const RULES: &str = "Over-Rigid (rules DOR)";
-const WITNESS: &str = "Over-Rigid (witness DOR)";
+/// The three counting methods.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Method {
+    Dense,
+    Rules,
+    Witness,
+}
+
+impl Method {
+    /// The name the text report gives it.
+    fn name(self) -> &'static str {
+        match self {
+            Method::Dense => "Dense",
+            Method::Rules => "Over-Rigid (rules DOR)",
+            Method::Witness => "Over-Rigid (witness DOR)",
+        }
+    }
+}
 
 fn method_line(
     system: &System,
@@ -272,15 +352,16 @@ fn disagreements(system: &System, a: &Analysis, s: &Structural) -> Vec<String> {
     let redundant: Vec<ConstraintIdx> = a.redundant.iter().map(|r| r.constraint).collect();
     let left = witness_left(s, a);
     let d = system.dim().displacements();
-    let methods: [(&str, &RigidityAnalysis, Option<&dyn DorOracle>); 3] = [
-        (DENSE, &s.dense, None),
-        (RULES, &s.over_rigid, Some(&s.rules)),
-        (WITNESS, &s.over_rigid_witness, Some(&s.witness)),
+    let methods: [(Method, &RigidityAnalysis, Option<&dyn DorOracle>); 3] = [
+        (Method::Dense, &s.dense, None),
+        (Method::Rules, &s.over_rigid, Some(&s.rules)),
+        (Method::Witness, &s.over_rigid_witness, Some(&s.witness)),
     ];
     // The methods that see no over-rigid subsystem although the witness finds a redundant
     // constraint, with the DOF they count as left.
     let mut blind: Vec<(&str, i64)> = Vec::new();
-    for (name, m, oracle) in methods {
+    for (method, m, oracle) in methods {
+        let name = method.name();
         match (&m.subsystem, m.verdict) {
             (Some(sub), Verdict::OverRigid) => {
                 if sub.constraints.iter().any(|c| redundant.contains(c)) {
@@ -289,18 +370,18 @@ fn disagreements(system: &System, a: &Analysis, s: &Structural) -> Vec<String> {
                 let exact = object_dor(system, &s.witness, &objects_of(sub));
                 let names = subsystem_names(system, sub);
                 let none = "no redundant constraint among them";
-                out.push(match oracle {
-                    None => format!(
-                        "{name}: {names}: {exact} displacements admitted, not {d}, and {none}: \
-                         Dense charges a subsystem with more displacements than it admits (a \
-                         segment in 3D, parallel lines, a circle)"
-                    ),
-                    Some(o) if o.name() == "rules" => format!(
+                out.push(match (method, oracle) {
+                    (Method::Rules, Some(o)) => format!(
                         "{name}: {names}: DOR {} by the rules, {exact} at the witness, and {none}: \
                          a parallelism/collinearity the rules cannot see",
                         object_dor(system, o, &objects_of(sub)),
                     ),
-                    Some(_) => format!("{name}: {names}: the witness finds {none}"),
+                    (Method::Witness, _) => format!("{name}: {names}: the witness finds {none}"),
+                    (Method::Dense | Method::Rules, _) => format!(
+                        "{name}: {names}: {exact} displacements admitted, not {d}, and {none}: \
+                         Dense charges a subsystem with more displacements than it admits (a \
+                         segment in 3D, parallel lines, a circle)"
+                    ),
                 });
             }
             _ if !redundant.is_empty() => blind.push((name, m.dof - m.dor as i64)),
@@ -310,18 +391,18 @@ fn disagreements(system: &System, a: &Analysis, s: &Structural) -> Vec<String> {
                     continue;
                 }
                 let exact = s.whole_witness_dor;
-                out.push(match oracle {
-                    None => format!(
+                out.push(match method {
+                    Method::Dense => format!(
                         "{name} counts {counted} DOF left, the witness {left}: the system admits \
                          {exact} displacements, Dense charges {d}"
                     ),
-                    Some(o) if o.name() == "rules" => format!(
+                    Method::Rules => format!(
                         "{name} counts {counted} DOF left, the witness {left}: the system admits \
                          {exact} displacements, not {}: a parallelism/collinearity the rules \
                          cannot see",
                         m.dor
                     ),
-                    Some(_) => {
+                    Method::Witness => {
                         format!("{name} counts {counted} DOF left, the witness {left}")
                     }
                 });
@@ -357,9 +438,12 @@ fn disagreements(system: &System, a: &Analysis, s: &Structural) -> Vec<String> {
 pub(crate) fn text(system: &System, a: &Analysis, s: &Structural) -> String {
     let mut lines = vec![
         "  structural:".to_owned(),
-        format!("    {}", method_line(system, DENSE, &s.dense, None)),
-        format!("    {}", method_line(system, RULES, &s.over_rigid, Some(&s.rules))),
-        format!("    {}", method_line(system, WITNESS, &s.over_rigid_witness, Some(&s.witness))),
+        format!("    {}", method_line(system, Method::Dense.name(), &s.dense, None)),
+        format!("    {}", method_line(system, Method::Rules.name(), &s.over_rigid, Some(&s.rules))),
+        format!(
+            "    {}",
+            method_line(system, Method::Witness.name(), &s.over_rigid_witness, Some(&s.witness))
+        ),
         format!("    {}", dm_line(system, &s.dm)),
     ];
     let left = witness_left(s, a);

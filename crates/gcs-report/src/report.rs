@@ -1,0 +1,398 @@
+//! The report of `gcs analyze` (format §2, with the sections of §3 and the fields of §4) as
+//! data — [`Report`], serialisable both ways, with typed enums — and as text for people
+//! ([`text`]).
+
+use gcs_analysis::{Analysis, Arithmetic, Backend};
+use gcs_jacobian::WitnessSource;
+use gcs_model::{ConstraintIdx, System};
+use gcs_rank::Proof;
+use serde::{Deserialize, Serialize};
+
+use crate::clusters::{self, ClusterReport, NodeReport};
+use crate::structural::{self, Structural, StructuralReport};
+
+/// The version of the report format (format §2, `schema`).
+pub const SCHEMA: u32 = 1;
+
+/// The arithmetic a rank was decided in (`backend`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BackendName {
+    /// Proven over ℚ.
+    Exact,
+    /// `num-rational`.
+    Rational,
+    /// GMP.
+    Rug,
+    /// Modulo 2^61 − 1.
+    Modp,
+    /// `f64` with a tolerance.
+    Float,
+}
+
+impl From<Backend> for BackendName {
+    fn from(b: Backend) -> Self {
+        match b {
+            Backend::Exact => BackendName::Exact,
+            Backend::Rational => BackendName::Rational,
+            Backend::Rug => BackendName::Rug,
+            Backend::ModP => BackendName::Modp,
+            Backend::Float { .. } => BackendName::Float,
+        }
+    }
+}
+
+/// Where the witness came from (`witness`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum WitnessName {
+    /// The sketch, exact and generic.
+    Sketch,
+    /// The sketch moved off a special position.
+    Perturbed,
+    /// Constructed from the seed.
+    Generated,
+    /// A numerical projection (float only).
+    Approximate,
+}
+
+impl From<WitnessSource> for WitnessName {
+    fn from(w: WitnessSource) -> Self {
+        match w {
+            WitnessSource::Sketch => WitnessName::Sketch,
+            WitnessSource::Perturbed => WitnessName::Perturbed,
+            WitnessSource::Generated => WitnessName::Generated,
+            WitnessSource::Approximate => WitnessName::Approximate,
+        }
+    }
+}
+
+/// How the exact backend proved its rank (`proof`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProofName {
+    /// Every dependency lifted modulo one prime and checked.
+    Modular,
+    /// Some lifted through several primes.
+    Multimodular,
+    /// Some proven by exact kernel vectors (the displacements).
+    Kernel,
+    /// Rational elimination.
+    Rational,
+}
+
+impl From<&Proof> for ProofName {
+    fn from(p: &Proof) -> Self {
+        match p {
+            Proof::Rational => ProofName::Rational,
+            Proof::ModularCertified { .. } => ProofName::Modular,
+            Proof::MultiModularCertified { .. } => ProofName::Multimodular,
+            Proof::KernelCertified { .. } => ProofName::Kernel,
+        }
+    }
+}
+
+/// The arithmetic the clusters were decided in (`clusters_arithmetic`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ArithmeticName {
+    /// Exact rationals.
+    Rational,
+    /// Modulo the prime.
+    Modp,
+    /// `f64`.
+    Float,
+    /// Not computed.
+    None,
+}
+
+impl From<Arithmetic> for ArithmeticName {
+    fn from(a: Arithmetic) -> Self {
+        match a {
+            Arithmetic::Rational => ArithmeticName::Rational,
+            Arithmetic::ModP => ArithmeticName::Modp,
+            Arithmetic::Float { .. } => ArithmeticName::Float,
+            Arithmetic::None => ArithmeticName::None,
+        }
+    }
+}
+
+/// A redundant constraint (format §2, `redundant`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RedundantReport {
+    /// Its id.
+    pub constraint: String,
+    /// How many of its equations are dependent.
+    pub rows: usize,
+    /// Its DOC.
+    pub doc: usize,
+    /// The earlier constraints it is redundant with.
+    pub spanning_group: Vec<String>,
+}
+
+/// One model's report (format §2–§4), in the order of its fields in the JSON line. Optional
+/// fields are left out of the JSON when absent.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// The model's name.
+    pub model: String,
+    /// The file, as given.
+    pub file: String,
+    /// 2 or 3.
+    pub dim: usize,
+    /// The arithmetic of the rank.
+    pub backend: BackendName,
+    /// Where the witness came from.
+    pub witness: WitnessName,
+    /// Number of entities.
+    pub entities: usize,
+    /// Number of constraints.
+    pub constraints: usize,
+    /// Columns of the Jacobian.
+    pub unknowns: usize,
+    /// Rows of the Jacobian (entity-internal rows included).
+    pub equations: usize,
+    /// Rank at the witness.
+    pub rank: usize,
+    /// `unknowns − rank`.
+    pub dof_absolute: usize,
+    /// Displacements admitted.
+    pub trivial_motions: usize,
+    /// Internal DOF.
+    pub dof: usize,
+    /// `dof == 0`.
+    pub rigid: bool,
+    /// Rigid without redundancy.
+    pub well_constrained: bool,
+    /// Redundant constraints in file order.
+    pub redundant: Vec<RedundantReport>,
+    /// The maximal rigid subsystems.
+    pub clusters: Vec<ClusterReport>,
+    /// With `--decompose`: one tree per cluster.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decomposition: Option<Vec<NodeReport>>,
+    /// With `--decompose`: `false` when the work budget ran out.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decomposition_complete: Option<bool>,
+    /// The seed of the witness search.
+    pub seed: u64,
+    /// The float backend's tolerance.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<f64>,
+    /// How the exact backend proved its rank.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub proof: Option<ProofName>,
+    /// Entity-internal rows among `equations`.
+    pub internal_equations: usize,
+    /// The float backend's rank by column-pivoted QR (a cross-check).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub float_qr_rank: Option<usize>,
+    /// With `--structural`: the counting methods (§3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub structural: Option<StructuralReport>,
+    /// The arithmetic the clusters were decided in.
+    pub clusters_arithmetic: ArithmeticName,
+}
+
+impl Report {
+    /// The report of one model: `file` is the path as given; `structural` adds §3's section.
+    pub fn new(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> Report {
+        let id = |c: ConstraintIdx| system.constraint(c).id.clone();
+        Report {
+            schema: SCHEMA,
+            model: system.name().to_owned(),
+            file: file.to_owned(),
+            dim: system.dim().coords(),
+            backend: a.backend.into(),
+            witness: a.witness.source.into(),
+            entities: system.entities().len(),
+            constraints: system.constraints().len(),
+            unknowns: a.unknowns,
+            equations: a.equations,
+            rank: a.rank,
+            dof_absolute: a.dof_absolute,
+            trivial_motions: a.trivial_motions,
+            dof: a.dof,
+            rigid: a.rigid(),
+            well_constrained: a.well_constrained(),
+            redundant: a
+                .redundant
+                .iter()
+                .map(|r| RedundantReport {
+                    constraint: id(r.constraint),
+                    rows: r.rows,
+                    doc: r.doc,
+                    spanning_group: r.spanning_group.iter().map(|c| id(*c)).collect(),
+                })
+                .collect(),
+            clusters: clusters::clusters_report(system, &a.clusters),
+            decomposition: a
+                .decomposition
+                .as_ref()
+                .map(|trees| trees.iter().map(|t| clusters::tree_report(system, t)).collect()),
+            decomposition_complete: a.decomposition_statistics.map(|s| s.complete),
+            seed: a.seed,
+            tolerance: match a.backend {
+                Backend::Float { tolerance } => Some(tolerance),
+                Backend::Exact | Backend::Rational | Backend::Rug | Backend::ModP => None,
+            },
+            proof: a.proof.as_ref().map(ProofName::from),
+            internal_equations: a.internal_equations,
+            float_qr_rank: a.float_qr_rank,
+            structural: s.map(|s| structural::report(system, s)),
+            clusters_arithmetic: a.clusters_arithmetic.into(),
+        }
+    }
+
+    /// The report as one line of JSON (JSON Lines).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_default()
+    }
+}
+
+fn describe_constraint(system: &System, c: gcs_model::ConstraintIdx) -> String {
+    let con = system.constraint(c);
+    let args: Vec<&str> = con.args.iter().map(|e| system.entity(*e).id.as_str()).collect();
+    format!("{} ({} {})", con.id, con.kind, args.join("–"))
+}
+
+/// The text report of one model, for people: the verdict, the degrees of freedom, each
+/// redundant constraint with what to delete, what decided it, the rigid parts, and the
+/// optional sections (format §4, "Command line").
+pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> String {
+    let mut out = String::new();
+    let push = |out: &mut String, s: String| {
+        out.push_str(&s);
+        out.push('\n');
+    };
+    push(
+        &mut out,
+        format!(
+            "{file}: {} ({}, {} entities, {} constraints)",
+            system.name(),
+            system.dim(),
+            system.entities().len(),
+            system.constraints().len()
+        ),
+    );
+    let verdict = match (a.rigid(), a.redundant.is_empty()) {
+        (true, true) => "well-constrained".to_owned(),
+        (true, false) => format!(
+            "over-constrained: rigid, with {} redundant constraint{}",
+            a.redundant.len(),
+            if a.redundant.len() == 1 { "" } else { "s" }
+        ),
+        (false, true) => {
+            format!("under-constrained: {} degree{} of freedom left", a.dof, plural(a.dof))
+        }
+        (false, false) => format!(
+            "under-constrained ({} degree{} of freedom left) and over-constrained ({} redundant)",
+            a.dof,
+            plural(a.dof),
+            a.redundant.len()
+        ),
+    };
+    push(&mut out, format!("  verdict: {verdict}"));
+    let placement = match a.trivial_motions {
+        0 => "it is fixed in place".to_owned(),
+        t if t == system.dim().displacements() => {
+            format!("the whole moves freely as a rigid body ({t} displacements)")
+        }
+        t => format!("the whole can still be displaced in {t} independent ways"),
+    };
+    push(
+        &mut out,
+        format!(
+            "  DOF: {} internal; {} counting the placement ({placement})",
+            a.dof, a.dof_absolute
+        ),
+    );
+    for r in &a.redundant {
+        let others: Vec<String> =
+            r.spanning_group.iter().map(|c| system.constraint(*c).id.clone()).collect();
+        let partial = if r.rows < r.doc {
+            format!(" ({} of its {} equations)", r.rows, r.doc)
+        } else {
+            String::new()
+        };
+        let fix = if others.is_empty() {
+            "remove it (it removes nothing)".to_owned()
+        } else {
+            format!("remove it or one of: {}", others.join(", "))
+        };
+        push(
+            &mut out,
+            format!("  redundant: {}{partial}: {fix}", describe_constraint(system, r.constraint)),
+        );
+    }
+    let proof = match &a.proof {
+        Some(p) => format!(" ({p})"),
+        None => String::new(),
+    };
+    let tol = match a.backend {
+        Backend::Float { tolerance } => format!(", tolerance {tolerance:e}"),
+        _ => String::new(),
+    };
+    let tested = if a.witness.genericity_tested { "" } else { ", genericity not tested" };
+    push(
+        &mut out,
+        format!(
+            "  decided by: {} arithmetic{proof}{tol}; witness: {}{tested}, seed {}",
+            a.backend.name(),
+            a.witness.source.name(),
+            a.seed
+        ),
+    );
+    if let Some(why) = &a.witness.no_exact_witness {
+        push(&mut out, format!("  note: sketch not used as witness: {why}"));
+    } else if let Some(why) = &a.witness.sketch_rejected {
+        push(&mut out, format!("  note: sketch not used as witness: {why}"));
+    }
+    // What is rigid, and so what still moves: the clusters.
+    if !(a.rigid() && a.clusters.len() == 1) {
+        for line in clusters::clusters_text(system, &a.clusters) {
+            push(&mut out, line);
+        }
+    } else {
+        push(&mut out, "  rigid: the whole system is one rigid body".to_owned());
+    }
+    if let Some(trees) = &a.decomposition {
+        let complete = a.decomposition_statistics.is_none_or(|s| s.complete);
+        push(
+            &mut out,
+            format!(
+                "  W-decomposition (a DR-plan: rigid subsystems by containment){}:",
+                if complete { "" } else { " — incomplete, the work budget ran out" }
+            ),
+        );
+        let mut lines = Vec::new();
+        for t in trees.iter().filter(|t| t.entities.len() > 1) {
+            clusters::tree_text(system, t, &mut lines);
+        }
+        for line in lines {
+            push(&mut out, line);
+        }
+    }
+    if let Some(s) = s {
+        push(&mut out, structural::text(system, a, s));
+    }
+    out.pop();
+    out
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+/// The JSON line of a file that failed (format §2): its file and the message.
+pub fn failure_json(file: &str, message: &str) -> String {
+    #[derive(Serialize)]
+    struct Failure<'a> {
+        schema: u32,
+        file: &'a str,
+        error: &'a str,
+    }
+    serde_json::to_string(&Failure { schema: SCHEMA, file, error: message }).unwrap_or_default()
+}
