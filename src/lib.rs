@@ -127,3 +127,31 @@ pub fn strip_unfixed_sketch(system: &System) -> System {
     let fixed = fixed_entities(system);
     rebuild(system, |e| fixed[e.index()])
 }
+
+/// A random 2D bar framework around a Laman graph, for property tests: a Laman graph on `n`
+/// points by Henneberg moves, then up to `removed` of its bars taken out and up to `added`
+/// bars between random pairs put in (none repeated), at random integer coordinates in
+/// `[-1000, 1000]²`. Returns the framework and its edges.
+pub fn random_bar_framework(
+    seed: u64,
+    n: usize,
+    removed: usize,
+    added: usize,
+) -> (System, Vec<(usize, usize)>) {
+    use gcs_model::Dim;
+    use gcs_model::generate::{framework, laman_edges, random_coords};
+    let mut rng = gcs_model::rng::SplitMix64::new(seed);
+    let mut edges = laman_edges(n, 0.5, &mut rng);
+    for _ in 0..removed.min(edges.len().saturating_sub(1)) {
+        let i = rng.below(edges.len() as u64) as usize;
+        edges.remove(i);
+    }
+    for _ in 0..added {
+        let (a, b) = (rng.below(n as u64) as usize, rng.below(n as u64) as usize);
+        if a != b && !edges.contains(&(a, b)) && !edges.contains(&(b, a)) {
+            edges.push((a, b));
+        }
+    }
+    let coords = random_coords(n, Dim::Two, 1000, &mut rng);
+    (framework("random", Dim::Two, &coords, &edges), edges)
+}

@@ -307,21 +307,7 @@ proptest! {
     /// theorem makes the count exact for generic bar frameworks).
     #[test]
     fn clusters_are_the_rigid_components(seed in 0u64..10_000, n in 3usize..=8, removed in 0usize..4, added in 0usize..3) {
-        let mut rng = SplitMix64::new(seed);
-        let mut edges = laman_edges(n, 0.5, &mut rng);
-        for _ in 0..removed.min(edges.len().saturating_sub(1)) {
-            let i = rng.below(edges.len() as u64) as usize;
-            edges.remove(i);
-        }
-        for _ in 0..added {
-            let a = rng.below(n as u64) as usize;
-            let b = rng.below(n as u64) as usize;
-            if a != b && !edges.contains(&(a, b)) && !edges.contains(&(b, a)) {
-                edges.push((a, b));
-            }
-        }
-        let coords = random_coords(n, Dim::Two, 1000, &mut rng);
-        let s = framework("random", Dim::Two, &coords, &edges);
+        let (s, edges) = gcs_suite::random_bar_framework(seed, n, removed, added);
         let a = run(&s, false);
         let mut ours: Vec<BTreeSet<usize>> = a
             .clusters

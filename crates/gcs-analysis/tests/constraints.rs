@@ -214,6 +214,7 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                     continue;
                 };
                 let name: String = format!("{signature:?}")
+                    .trim_start_matches("Metric(")
                     .chars()
                     .take_while(char::is_ascii_alphanumeric)
                     .collect();
@@ -245,8 +246,11 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                     ids.push(id);
                 }
                 let args: Vec<&str> = ids.iter().map(String::as_str).collect();
-                if matches!(signature, Signature::DistanceLineLine(..) if dim == Dim::Two)
-                    || matches!(signature, Signature::DistancePlanePlane(..))
+                if matches!(signature, Signature::Metric(gcs_model::Metric::DistanceLineLine(..)) if dim == Dim::Two)
+                    || matches!(
+                        signature,
+                        Signature::Metric(gcs_model::Metric::DistancePlanePlane(..))
+                    )
                 {
                     b.constraint(ConstraintKind::Parallel, "parallel", &args, None).unwrap();
                 }

@@ -17,14 +17,11 @@ use gcs_analysis::{Analysis, AnalysisOptions, DecompositionNode, analyze};
 use gcs_jacobian::{Layout, RowOwner, WitnessOptions, WitnessSource, find_witness};
 use gcs_model::System;
 use gcs_rank::{BigRational, Echelon, EchelonOptions, Insertion, SparseRow};
+use gcs_suite::load;
 
 fn read(file: &str) -> String {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(file);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn load(file: &str) -> System {
-    System::from_ron_str(&read(file), Some(file)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn analysis(system: &System, decompose: bool) -> Analysis {

@@ -6,25 +6,14 @@
 //! Golden files are regenerated with `UPDATE_EXPECT=1 cargo test -p gcs-cli --test analyze`
 //! (rust-analyzer's expect-test convention), so that any change in a report shows as a diff.
 
+mod common;
+
+use common::{gcs, root};
+
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use serde_json::Value;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gcs(args: &[&str]) -> (i32, String, String) {
-    let out =
-        Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root()).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
 
 fn json_lines(stdout: &str) -> Vec<Value> {
     stdout

@@ -1,18 +1,8 @@
 //! `gcs check` end to end: counts, JSON Lines, failures that do not stop the batch, exit codes.
 
-use std::path::Path;
-use std::process::Command;
+mod common;
 
-fn gcs(args: &[&str]) -> (i32, String, String) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out =
-        Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
+use common::gcs;
 
 #[test]
 fn json_lines_with_counts_and_failures_in_order() {

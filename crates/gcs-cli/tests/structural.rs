@@ -2,25 +2,11 @@
 //! of `data/`, the papers' examples with what each method says, and the disagreements the text
 //! report names.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-use gcs_model::System;
+use common::gcs;
+
 use serde_json::Value;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gcs(args: &[&str]) -> (i32, String, String) {
-    let out =
-        Command::new(env!("CARGO_BIN_EXE_gcs")).args(args).current_dir(root()).output().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
 
 /// The JSON report of one model, with `--structural`.
 fn report(file: &str) -> Value {
@@ -44,10 +30,7 @@ fn disagreements(text: &str) -> Vec<&str> {
     text.lines().filter_map(|l| l.trim_start().strip_prefix("disagreement: ")).collect()
 }
 
-fn load(file: &str) -> System {
-    let path = root().join(file);
-    System::from_ron_str(&std::fs::read_to_string(&path).unwrap(), Some(file)).unwrap()
-}
+use gcs_suite::load;
 
 #[test]
 fn flow_fig1a_dense_is_fooled_by_the_parallel_lines() {

@@ -139,7 +139,8 @@ impl<'s> Equations<'s> {
         }
         let value = constraint.value.as_ref()?.to_f64()?;
         let local = self.local(c, x);
-        let (m, target) = laws::measure(constraint.signature, self.branch(c), &local, value)?;
+        let metric = constraint.signature.metric()?;
+        let (m, target) = laws::measure(metric, self.branch(c), &local, value)?;
         Some(Residual {
             constraint: c,
             values: vec![m.value - target],

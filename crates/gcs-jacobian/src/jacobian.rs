@@ -104,10 +104,12 @@ pub fn relation_row<F: Field>(
     }
     let local = Local::new(system, layout, &base, witness);
     let variants = |v| laws::law(signature, v, &local, &|_| None, false);
-    let variant = match laws::parallel(signature, &local, &|x: &F| x.is_zero()) {
-        Some(parallel) if variants(0).variants == 2 => usize::from(parallel),
+    let first = variants(0);
+    let variant = match first.parallel(&|x: &F| x.is_zero()) {
+        Some(parallel) if first.variants == 2 => usize::from(parallel),
         Some(false) => return None,
         Some(true) | None => 0,
     };
-    variants(variant).rows.first().map(|r| grad_row(r, Some(&local.cols)))
+    let law = if variant == 0 { first } else { variants(variant) };
+    law.rows.first().map(|r| grad_row(r, Some(&local.cols)))
 }

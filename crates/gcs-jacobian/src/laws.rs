@@ -14,10 +14,10 @@
 //! cross product), all of them are returned as candidates and [`crate::plan`] keeps DOC of them
 //! that are independent at the witness.
 //!
-//! Adding a constraint kind: its rows in [`gcs_model::Signature`], then one arm here in [`law`],
-//! [`measure`] and [`parallel`] (the compiler lists them).
+//! Adding a constraint kind: its rows in [`gcs_model::Signature`], then one arm here in [`law`]
+//! and, for a metric one, in [`measure`] (the compiler lists them).
 
-use gcs_model::{EntityIdx, Signature};
+use gcs_model::{EntityIdx, Metric, Signature};
 use gcs_rank::Field;
 
 use crate::dual::{Dual, vec as v};
@@ -44,15 +44,32 @@ pub(crate) struct Law<F> {
     /// was asked for. The constructive placement solves `P = R M` for a rational orthogonal
     /// `R`, which is linear.
     pub(crate) split: Option<Split<F>>,
+    /// For a distance between lines or planes: values that all vanish exactly when they are
+    /// parallel — the condition under which the distance between 2D lines or planes is
+    /// defined, and which picks the formula between 3D lines (variant 1: parallel).
+    pub(crate) parallel: Option<Vec<Dual<F>>>,
+}
+
+impl<F: Field> Law<F> {
+    /// Whether the lines or planes of a distance between them are parallel (`None` for
+    /// every other constraint), with `is_zero` the zero test of the caller.
+    pub(crate) fn parallel(&self, is_zero: &dyn Fn(&F) -> bool) -> Option<bool> {
+        self.parallel.as_ref().map(|xs| xs.iter().all(|x| is_zero(&x.value)))
+    }
 }
 
 impl<F> Law<F> {
     fn exact(rows: Vec<Dual<F>>) -> Self {
-        Law { variants: 1, rows, metric: false, split: None }
+        Law { variants: 1, rows, metric: false, split: None, parallel: None }
     }
 
     fn measure(row: Dual<F>) -> Self {
-        Law { variants: 1, rows: vec![row], metric: true, split: None }
+        Law { variants: 1, rows: vec![row], metric: true, split: None, parallel: None }
+    }
+
+    fn parallel_when(mut self, vanishing: Vec<Dual<F>>) -> Self {
+        self.parallel = Some(vanishing);
+        self
     }
 
     fn variants(mut self, n: usize) -> Self {
@@ -82,32 +99,36 @@ pub(crate) fn law<F: Field>(
     let d3 = l.is_3d();
     match sig {
         S::CoincidentPoints(a, b) => Law::exact(v::sub(&l.point(a), &l.point(b))),
-        S::DistancePointPoint(a, b) => Law::measure(v::norm2(&v::sub(&l.point(a), &l.point(b)))),
-        S::DistancePointLine { point, line } if !d3 => {
+        S::Metric(Metric::DistancePointPoint(a, b)) => {
+            Law::measure(v::norm2(&v::sub(&l.point(a), &l.point(b))))
+        }
+        S::Metric(Metric::DistancePointLine { point, line }) if !d3 => {
             let x = l.point(point);
             let [a, b, c0] = l.line2(line);
             let p = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
             Law::measure(Dual::ratio_sqrt(&p, &(&(&a * &a) + &(&b * &b))))
         }
-        S::DistancePointLine { point, line } => {
+        S::Metric(Metric::DistancePointLine { point, line }) => {
             let x = l.point(point);
             let (d, m) = l.line3(line);
             let w = v::sub(&v::cross3(&x, &d), &m);
             Law::measure(Dual::ratio(&v::norm2(&w), &v::norm2(&d)))
         }
-        S::DistancePointPlane { point, plane } => {
+        S::Metric(Metric::DistancePointPlane { point, plane }) => {
             let x = l.point(point);
             let (n, delta) = l.plane(plane);
             Law::measure(Dual::ratio_sqrt(&(&v::dot(&n, &x) + &delta), &v::norm2(&n)))
         }
-        S::DistanceLineLine(p, q) if !d3 => {
+        S::Metric(Metric::DistanceLineLine(p, q)) if !d3 => {
             let [a1, b1, c1] = l.line2(p);
             let [a2, b2, c2] = l.line2(q);
-            Law::measure(parallel_offset(&[a1, b1], &c1, &[a2, b2], &c2))
+            let cross = v::cross2(&[a1.clone(), b1.clone()], &[a2.clone(), b2.clone()]);
+            Law::measure(parallel_offset(&[a1, b1], &c1, &[a2, b2], &c2)).parallel_when(vec![cross])
         }
-        S::DistanceLineLine(p, q) => {
+        S::Metric(Metric::DistanceLineLine(p, q)) => {
             let (d1, m1) = l.line3(p);
             let (d2, m2) = l.line3(q);
+            let cross = v::cross3(&d1, &d2);
             let row = if variant == 0 {
                 // Skew lines: (d1·m2 + d2·m1) / |d1 × d2|.
                 let num = &v::dot(&d1, &m2) + &v::dot(&d2, &m1);
@@ -118,14 +139,15 @@ pub(crate) fn law<F: Field>(
                 let w = v::sub(&v::scale(&m1, &k), &v::scale(&m2, &v::norm2(&d1)));
                 Dual::ratio(&v::norm2(&w), &(&(&k * &k) * &v::norm2(&d1)))
             };
-            Law::measure(row).variants(2)
+            Law::measure(row).variants(2).parallel_when(cross)
         }
-        S::DistancePlanePlane(p, q) => {
+        S::Metric(Metric::DistancePlanePlane(p, q)) => {
             let (n1, e1) = l.plane(p);
             let (n2, e2) = l.plane(q);
-            Law::measure(parallel_offset(&n1, &e1, &n2, &e2))
+            let cross = v::cross3(&n1, &n2);
+            Law::measure(parallel_offset(&n1, &e1, &n2, &e2)).parallel_when(cross)
         }
-        S::AngleLineLine(p, q) if !d3 => {
+        S::Metric(Metric::AngleLineLine(p, q)) if !d3 => {
             // Oriented angle between normals: its gradient is proportional to
             // cross0·∇dot − dot0·∇cross, regular at every angle (0° and 90° included).
             let (n1, n2) = (l.normal2(p), l.normal2(q));
@@ -133,11 +155,15 @@ pub(crate) fn law<F: Field>(
             let cross = v::cross2(&n1, &n2);
             Law::measure(&dot.scale(&cross.value) - &cross.scale(&dot.value))
         }
-        S::AngleLineLine(p, q) => Law::measure(cosine(&l.direction3(p), &l.direction3(q))),
-        S::AngleLinePlane { line, plane } => {
+        S::Metric(Metric::AngleLineLine(p, q)) => {
+            Law::measure(cosine(&l.direction3(p), &l.direction3(q)))
+        }
+        S::Metric(Metric::AngleLinePlane { line, plane }) => {
             Law::measure(cosine(&l.direction3(line), &l.plane(plane).0))
         }
-        S::AnglePlanePlane(p, q) => Law::measure(cosine(&l.plane(p).0, &l.plane(q).0)),
+        S::Metric(Metric::AnglePlanePlane(p, q)) => {
+            Law::measure(cosine(&l.plane(p).0, &l.plane(q).0))
+        }
         S::ParallelLineLine(p, q) if !d3 => {
             let [a1, b1, _] = l.line2(p);
             let [a2, b2, _] = l.line2(q);
@@ -215,7 +241,7 @@ pub(crate) fn law<F: Field>(
                 .variants(2)
                 .split(want_split, || (d, vec![rr]))
         }
-        S::Radius(e) => Law::measure(l.round(e).1),
+        S::Metric(Metric::Radius(e)) => Law::measure(l.round(e).1),
         S::EqualLength(s, t) => {
             let (p1, q1) = l.segment(s);
             let (p2, q2) = l.segment(t);
@@ -275,58 +301,6 @@ fn fix_rows<F: Field>(l: &Local<'_, F>, e: EntityIdx, sketch: &SketchFn<'_, F>) 
     rows
 }
 
-/// Whether the lines or planes of a distance between lines or planes are parallel at `l`:
-/// `Some(true)` / `Some(false)` for [`Signature::DistanceLineLine`] and
-/// [`Signature::DistancePlanePlane`] — the condition under which the parallel-offset distance
-/// is defined (2D lines, planes) or which picks the formula (3D lines) — and `None` for every
-/// other constraint.
-pub(crate) fn parallel<F: Field>(
-    sig: Signature,
-    l: &Local<'_, F>,
-    is_zero: &dyn Fn(&F) -> bool,
-) -> Option<bool> {
-    use Signature as S;
-    let zero = |xs: &[Dual<F>]| xs.iter().all(|x| is_zero(&x.value));
-    match sig {
-        S::DistanceLineLine(p, q) if !l.is_3d() => {
-            let [a1, b1, _] = l.line2(p);
-            let [a2, b2, _] = l.line2(q);
-            Some(is_zero(&v::cross2(&[a1, b1], &[a2, b2]).value))
-        }
-        S::DistanceLineLine(p, q) => Some(zero(&v::cross3(&l.line3(p).0, &l.line3(q).0))),
-        S::DistancePlanePlane(p, q) => Some(zero(&v::cross3(&l.plane(p).0, &l.plane(q).0))),
-        S::CoincidentPoints(..)
-        | S::DistancePointPoint(..)
-        | S::DistancePointLine { .. }
-        | S::DistancePointPlane { .. }
-        | S::AngleLineLine(..)
-        | S::AnglePlanePlane(..)
-        | S::AngleLinePlane { .. }
-        | S::ParallelLineLine(..)
-        | S::ParallelPlanePlane(..)
-        | S::ParallelLinePlane { .. }
-        | S::PerpendicularLineLine(..)
-        | S::PerpendicularPlanePlane(..)
-        | S::PerpendicularLinePlane { .. }
-        | S::IncidentPointLine { .. }
-        | S::IncidentPointPlane { .. }
-        | S::IncidentPointCircle { .. }
-        | S::IncidentPointSphere { .. }
-        | S::IncidentLinePlane { .. }
-        | S::TangentLineCircle { .. }
-        | S::TangentCircleCircle(..)
-        | S::TangentPlaneSphere { .. }
-        | S::TangentSphereSphere(..)
-        | S::Radius(_)
-        | S::EqualLength(..)
-        | S::Midpoint { .. }
-        | S::Symmetric { .. }
-        | S::Horizontal(_)
-        | S::Vertical(_)
-        | S::Fix(_) => None,
-    }
-}
-
 /// The measure of a metric constraint at a real configuration, in the units of its value
 /// (lengths in model units, angles in degrees), with its gradient, and the user's `value`
 /// reduced to the range of the measure; `None` for parameter-free constraints. Distances are
@@ -335,12 +309,12 @@ pub(crate) fn parallel<F: Field>(
 /// measure); the angles in 3D are unsigned, in `[0°, 90°]` (a value `v` stands for
 /// `min(v mod 180°, 180° − v mod 180°)`).
 pub(crate) fn measure(
-    sig: Signature,
+    metric: Metric,
     variant: usize,
     l: &Local<'_, f64>,
     value: f64,
 ) -> Option<(Dual<f64>, f64)> {
-    use Signature as S;
+    use Metric as M;
     let d3 = l.is_3d();
     let unsigned = |m: Dual<f64>| {
         let t = value.rem_euclid(180.0);
@@ -349,25 +323,25 @@ pub(crate) fn measure(
     let sqrt = |x: &Dual<f64>| x.map(f64::sqrt, |v| 0.5 / v.sqrt());
     let abs = |x: &Dual<f64>| if x.value < 0.0 { -x } else { x.clone() };
     let length = |m: Dual<f64>| (m, value);
-    Some(match sig {
-        S::DistancePointPoint(a, b) => length(sqrt(&v::norm2(&v::sub(&l.point(a), &l.point(b))))),
-        S::DistancePointLine { point, line } if !d3 => {
+    Some(match metric {
+        M::DistancePointPoint(a, b) => length(sqrt(&v::norm2(&v::sub(&l.point(a), &l.point(b))))),
+        M::DistancePointLine { point, line } if !d3 => {
             let x = l.point(point);
             let [a, b, c0] = l.line2(line);
             let p = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
             length(abs(&p).over(&sqrt(&(&(&a * &a) + &(&b * &b)))))
         }
-        S::DistancePointLine { point, line } => {
+        M::DistancePointLine { point, line } => {
             let x = l.point(point);
             let (d, m) = l.line3(line);
             let w = v::sub(&v::cross3(&x, &d), &m);
             length(sqrt(&v::norm2(&w).over(&v::norm2(&d))))
         }
-        S::DistancePointPlane { point, plane } => {
+        M::DistancePointPlane { point, plane } => {
             let (n, delta) = l.plane(plane);
             length(abs(&(&v::dot(&n, &l.point(point)) + &delta)).over(&sqrt(&v::norm2(&n))))
         }
-        S::DistanceLineLine(p, q) if !d3 => {
+        M::DistanceLineLine(p, q) if !d3 => {
             let [a1, b1, c1] = l.line2(p);
             let [a2, b2, c2] = l.line2(q);
             let n1 = [a1, b1];
@@ -375,7 +349,7 @@ pub(crate) fn measure(
             let num = &(&c1 * &k) - &(&c2 * &v::norm2(&n1));
             length(abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1)))))
         }
-        S::DistanceLineLine(p, q) => {
+        M::DistanceLineLine(p, q) => {
             let (d1, m1) = l.line3(p);
             let (d2, m2) = l.line3(q);
             length(if variant == 0 {
@@ -387,14 +361,14 @@ pub(crate) fn measure(
                 sqrt(&v::norm2(&w).over(&(&(&k * &k) * &v::norm2(&d1))))
             })
         }
-        S::DistancePlanePlane(p, q) => {
+        M::DistancePlanePlane(p, q) => {
             let (n1, e1) = l.plane(p);
             let (n2, e2) = l.plane(q);
             let k = v::dot(&n1, &n2);
             let num = &(&e1 * &k) - &(&e2 * &v::norm2(&n1));
             length(abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1)))))
         }
-        S::AngleLineLine(p, q) if !d3 => {
+        M::AngleLineLine(p, q) if !d3 => {
             // From the direction of the first line to that of the second: the directions are
             // the normals turned by 90°, the same angle.
             let (n1, n2) = (l.normal2(p), l.normal2(q));
@@ -407,36 +381,14 @@ pub(crate) fn measure(
             let target = t + 180.0 * ((m.value - t) / 180.0).round();
             (m, target)
         }
-        S::AngleLineLine(p, q) => {
+        M::AngleLineLine(p, q) => {
             unsigned(unsigned_angle(&l.direction3(p), &l.direction3(q), false))
         }
-        S::AngleLinePlane { line, plane } => {
+        M::AngleLinePlane { line, plane } => {
             unsigned(unsigned_angle(&l.direction3(line), &l.plane(plane).0, true))
         }
-        S::AnglePlanePlane(p, q) => unsigned(unsigned_angle(&l.plane(p).0, &l.plane(q).0, false)),
-        S::Radius(e) => length(l.round(e).1),
-        S::CoincidentPoints(..)
-        | S::ParallelLineLine(..)
-        | S::ParallelPlanePlane(..)
-        | S::ParallelLinePlane { .. }
-        | S::PerpendicularLineLine(..)
-        | S::PerpendicularPlanePlane(..)
-        | S::PerpendicularLinePlane { .. }
-        | S::IncidentPointLine { .. }
-        | S::IncidentPointPlane { .. }
-        | S::IncidentPointCircle { .. }
-        | S::IncidentPointSphere { .. }
-        | S::IncidentLinePlane { .. }
-        | S::TangentLineCircle { .. }
-        | S::TangentCircleCircle(..)
-        | S::TangentPlaneSphere { .. }
-        | S::TangentSphereSphere(..)
-        | S::EqualLength(..)
-        | S::Midpoint { .. }
-        | S::Symmetric { .. }
-        | S::Horizontal(_)
-        | S::Vertical(_)
-        | S::Fix(_) => return None,
+        M::AnglePlanePlane(p, q) => unsigned(unsigned_angle(&l.plane(p).0, &l.plane(q).0, false)),
+        M::Radius(e) => length(l.round(e).1),
     })
 }
 

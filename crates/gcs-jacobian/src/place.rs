@@ -313,7 +313,11 @@ impl Placer<'_> {
         let mut quads: Vec<(AffineMap, AffineMap)> = Vec::new();
         for &ci in ready {
             let variant = self.variant[ci.index()];
-            let (f0, f1) = self.evaluate(e, ci, variant, &pref, &delta);
+            let ([l0, l1], local) = self.laws_at(e, ci, variant, &pref, &delta);
+            let linearised = |law: &laws::Law<Q>| -> Vec<Linearised> {
+                law.rows.iter().map(|d| (d.value.clone(), restrict(d, &local, &cols))).collect()
+            };
+            let (f0, f1) = (linearised(&l0), linearised(&l1));
             let mut split = None;
             for (k, (r0, r1)) in f0.iter().zip(&f1).enumerate() {
                 let g = &r0.1;
@@ -328,7 +332,7 @@ impl Placer<'_> {
                     linear.push((g.clone(), qla::dot(g, &pref) - &r0.0));
                 } else if let Some(Some(maps)) = {
                     if split.is_none() {
-                        split = Some(self.split_maps(e, ci, variant, &pref, &delta));
+                        split = Some(split_maps([&l0, &l1], &local, &cols, &pref, &delta));
                     }
                     split.as_ref().and_then(|s| s.as_ref()).and_then(|s| s.get(k).cloned())
                 } {
@@ -422,80 +426,33 @@ impl Placer<'_> {
         ok
     }
 
-    /// The candidate equations of `ci` evaluated at `x = pref` and `x = pref + delta` for
-    /// entity `e`: `(value, gradient over e's coordinates)` at the first, value at the second.
-    fn evaluate(
+    /// The law of `ci` (with its difference-of-squares form) with entity `e` at `pref` and at
+    /// `pref + delta`, and the local columns of the constraint.
+    fn laws_at(
         &mut self,
         e: EntityIdx,
         ci: ConstraintIdx,
         variant: usize,
         pref: &[Q],
         delta: &[Q],
-    ) -> (Vec<Linearised>, Vec<Linearised>) {
-        let c = self.system.constraint(ci);
+    ) -> ([laws::Law<Q>; 2], Vec<usize>) {
+        let signature = self.system.constraint(ci).signature;
         let cols = self.layout.columns(e);
-        let mut at = |x: &[Q]| -> Vec<Linearised> {
-            for (col, v) in cols.clone().zip(x) {
-                self.coords[col] = v.clone();
-            }
-            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
-            let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
-            let law = laws::law(c.signature, variant, &local, &sketch, false);
-            law.rows.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
-        };
-        let f0 = at(pref);
         let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
-        let f1 = at(&shifted);
-        for (col, v) in cols.zip(pref) {
-            self.coords[col] = v.clone();
-        }
-        (f0, f1)
-    }
-
-    /// The difference-of-squares form of a quadratic constraint as affine maps of `e`'s
-    /// coordinates (checked affine), one per candidate row.
-    fn split_maps(
-        &mut self,
-        e: EntityIdx,
-        ci: ConstraintIdx,
-        variant: usize,
-        pref: &[Q],
-        delta: &[Q],
-    ) -> Option<Vec<Option<(AffineMap, AffineMap)>>> {
-        let c = self.system.constraint(ci);
-        let cols = self.layout.columns(e);
         let mut at = |x: &[Q]| {
             for (col, v) in cols.clone().zip(x) {
                 self.coords[col] = v.clone();
             }
             let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
-            let none = |_: EntityIdx| None;
-            laws::law(c.signature, variant, &local, &none, true).split.map(|(p, m)| {
-                let conv = |ds: &[Dual<Q>]| -> Vec<(Q, Vec<Q>)> {
-                    ds.iter().map(|d| (d.value.clone(), restrict(d, &local.cols, &cols))).collect()
-                };
-                (conv(&p), conv(&m))
-            })
+            let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
+            (laws::law(signature, variant, &local, &sketch, true), local.cols)
         };
-        let s0 = at(pref)?;
-        let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
-        let s1 = at(&shifted)?;
+        let (l0, local_cols) = at(pref);
+        let (l1, _) = at(&shifted);
         for (col, v) in cols.zip(pref) {
             self.coords[col] = v.clone();
         }
-        let affine = |z0: &[(Q, Vec<Q>)], z1: &[(Q, Vec<Q>)]| -> Option<AffineMap> {
-            let mut rows = Vec::new();
-            for (a, b) in z0.iter().zip(z1) {
-                if &a.0 + &qla::dot(&a.1, delta) != b.0 {
-                    return None;
-                }
-                // Value at x: a.0 + g·(x − pref) = g·x + (a.0 − g·pref).
-                rows.push((a.1.clone(), &a.0 - &qla::dot(&a.1, pref)));
-            }
-            Some(AffineMap { rows })
-        };
-        let pm = affine(&s0.0, &s1.0).zip(affine(&s0.1, &s1.1));
-        Some(vec![pm])
+        ([l0, l1], local_cols)
     }
 
     /// A point of `space` near the preference, moved at random inside it.
@@ -824,6 +781,36 @@ fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>>
     let row: Vec<Q> = lp.iter().zip(&lm).map(|(a, b)| a * &np - &sigma * b * &l).collect();
     let rhs = -(&lp0 * &np - &sigma * &lm0 * &l);
     Some(vec![(row, rhs)])
+}
+
+/// The difference-of-squares form of a quadratic constraint, from its laws at `pref` and at
+/// `pref + delta`, as affine maps of the coordinates of the entity being placed (`cols`;
+/// checked affine), one per candidate row.
+fn split_maps(
+    laws: [&laws::Law<Q>; 2],
+    local: &[usize],
+    cols: &std::ops::Range<usize>,
+    pref: &[Q],
+    delta: &[Q],
+) -> Option<Vec<Option<(AffineMap, AffineMap)>>> {
+    let conv = |ds: &[Dual<Q>]| -> Vec<(Q, Vec<Q>)> {
+        ds.iter().map(|d| (d.value.clone(), restrict(d, local, cols))).collect()
+    };
+    let (p0, m0) = laws[0].split.as_ref()?;
+    let (p1, m1) = laws[1].split.as_ref()?;
+    let affine = |z0: &[(Q, Vec<Q>)], z1: &[(Q, Vec<Q>)]| -> Option<AffineMap> {
+        let mut rows = Vec::new();
+        for (a, b) in z0.iter().zip(z1) {
+            if &a.0 + &qla::dot(&a.1, delta) != b.0 {
+                return None;
+            }
+            // Value at x: a.0 + g·(x − pref) = g·x + (a.0 − g·pref).
+            rows.push((a.1.clone(), &a.0 - &qla::dot(&a.1, pref)));
+        }
+        Some(AffineMap { rows })
+    };
+    let pm = affine(&conv(p0), &conv(p1)).zip(affine(&conv(m0), &conv(m1)));
+    Some(vec![pm])
 }
 
 /// `λ` with `a = λ b` (both nonzero), if any.

@@ -83,7 +83,7 @@ pub(crate) fn plan_with<F: Field>(
         // Metric distances between lines or planes need them parallel (2D lines, planes) or
         // choose their formula (3D lines).
         let first = laws::law(c.signature, 0, &local, sketch, false);
-        let variant = match laws::parallel(c.signature, &local, zero) {
+        let variant = match first.parallel(zero) {
             Some(parallel) if first.variants == 2 => usize::from(parallel),
             Some(false) => return Ok(Err(Unsatisfied::NotParallel(ci))),
             Some(true) => 0,

@@ -48,6 +48,18 @@ impl fmt::Display for Dim {
     }
 }
 
+/// What a constraint is, beyond its geometry ([`ConstraintKind::role`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Role {
+    /// A dimension: a measure with a value (distance, angle, radius).
+    Metric,
+    /// Not invariant under displacements: it ties the system to the page (`Fix`,
+    /// `Horizontal`, `Vertical`).
+    Absolute,
+    /// A parameter-free relation invariant under displacements (incidence, parallelism…).
+    Relation,
+}
+
 /// The kind of a constraint.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ConstraintKind {
@@ -120,12 +132,12 @@ impl ConstraintKind {
         }
     }
 
-    /// Whether the constraint carries a metric value (a dimension in the CAD sense). Metric
-    /// constraints need no special witness: their values are read off it.
-    pub fn is_metric(self) -> bool {
+    /// What the constraint is: a dimension, an absolute constraint or a relation.
+    pub fn role(self) -> Role {
         use ConstraintKind as K;
         match self {
-            K::Distance | K::Angle | K::Radius => true,
+            K::Distance | K::Angle | K::Radius => Role::Metric,
+            K::Horizontal | K::Vertical | K::Fix => Role::Absolute,
             K::Coincident
             | K::Parallel
             | K::Perpendicular
@@ -133,30 +145,19 @@ impl ConstraintKind {
             | K::Tangent
             | K::EqualLength
             | K::Midpoint
-            | K::Symmetric
-            | K::Horizontal
-            | K::Vertical
-            | K::Fix => false,
+            | K::Symmetric => Role::Relation,
         }
+    }
+
+    /// Whether the constraint carries a metric value (a dimension in the CAD sense). Metric
+    /// constraints need no special witness: their values are read off it.
+    pub fn is_metric(self) -> bool {
+        self.role() == Role::Metric
     }
 
     /// Whether the constraint is absolute: not invariant under displacements.
     pub fn is_absolute(self) -> bool {
-        use ConstraintKind as K;
-        match self {
-            K::Horizontal | K::Vertical | K::Fix => true,
-            K::Coincident
-            | K::Distance
-            | K::Angle
-            | K::Parallel
-            | K::Perpendicular
-            | K::Incident
-            | K::Tangent
-            | K::Radius
-            | K::EqualLength
-            | K::Midpoint
-            | K::Symmetric => false,
-        }
+        self.role() == Role::Absolute
     }
 
     /// The names of the entity fields the constraint takes, in order.

@@ -3,7 +3,7 @@
 //!
 //! A model file (format in `docs/format.md` §1) is read into a validated [`System`]: ids are
 //! resolved to indices ([`EntityIdx`], [`ConstraintIdx`]), every constraint is checked against
-//! the kinds it takes and given its roles ([`Shape`]) and its DOC, segments are resolved to their
+//! the kinds it takes and given its roles ([`Signature`]) and its DOC, segments are resolved to their
 //! two points, and sketch coordinates are exact rationals (a decimal is the rational it
 //! denotes: `0.1` is 1/10). A system can be written back ([`System::to_ron`]) and built in code
 //! ([`SystemBuilder`]) with the same checks.
@@ -58,9 +58,9 @@ mod write;
 
 pub use entity::{EntityClass, EntityKind, Geometry};
 pub use error::{ModelError, ModelErrorKind, Position};
-pub use kinds::{ConstraintKind, Dim};
+pub use kinds::{ConstraintKind, Dim, Role};
 pub use num_rational::BigRational;
-pub use signature::Signature;
+pub use signature::{Metric, Signature};
 pub use system::{
-    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, Shape, System, SystemBuilder,
+    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, System, SystemBuilder,
 };

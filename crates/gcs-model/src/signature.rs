@@ -9,15 +9,12 @@
 //! about it.
 
 use crate::kinds::{ConstraintKind, Dim, EntityClass, EntityKind};
-use crate::system::{EntityIdx, Shape};
+use crate::system::EntityIdx;
 
-/// A constraint kind resolved against the classes of its entities: one variant per row of the
-/// constraint table (format §1), with the entities in their roles. "Line" roles take lines and
-/// segments alike, "circle" roles every circle-like entity.
+/// The metric rows of the constraint table ([`Signature::metric`]): what a measure is taken
+/// of, with the entities in their roles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Signature {
-    /// Two points at the same place (DOC: the dimension).
-    CoincidentPoints(EntityIdx, EntityIdx),
+pub enum Metric {
     /// The distance between two points.
     DistancePointPoint(EntityIdx, EntityIdx),
     /// The distance from a point to a line.
@@ -34,7 +31,7 @@ pub enum Signature {
         /// The plane.
         plane: EntityIdx,
     },
-    /// The distance between two lines: parallel lines in 2D, any lines in 3D.
+    /// The distance between two lines.
     DistanceLineLine(EntityIdx, EntityIdx),
     /// The distance between two parallel planes.
     DistancePlanePlane(EntityIdx, EntityIdx),
@@ -49,6 +46,53 @@ pub enum Signature {
         /// The plane.
         plane: EntityIdx,
     },
+    /// The radius of a circle or sphere.
+    Radius(EntityIdx),
+}
+
+impl Metric {
+    /// The constraint kind: `Distance`, `Angle` or `Radius`.
+    pub fn kind(self) -> ConstraintKind {
+        use Metric as M;
+        match self {
+            M::DistancePointPoint(..)
+            | M::DistancePointLine { .. }
+            | M::DistancePointPlane { .. }
+            | M::DistanceLineLine(..)
+            | M::DistancePlanePlane(..) => ConstraintKind::Distance,
+            M::AngleLineLine(..) | M::AnglePlanePlane(..) | M::AngleLinePlane { .. } => {
+                ConstraintKind::Angle
+            }
+            M::Radius(_) => ConstraintKind::Radius,
+        }
+    }
+
+    /// The entities measured, in role order.
+    pub fn entities(self) -> Vec<EntityIdx> {
+        use Metric as M;
+        match self {
+            M::DistancePointPoint(a, b)
+            | M::DistanceLineLine(a, b)
+            | M::DistancePlanePlane(a, b)
+            | M::AngleLineLine(a, b)
+            | M::AnglePlanePlane(a, b) => vec![a, b],
+            M::DistancePointLine { point, line: other }
+            | M::DistancePointPlane { point, plane: other } => vec![point, other],
+            M::AngleLinePlane { line, plane } => vec![line, plane],
+            M::Radius(e) => vec![e],
+        }
+    }
+}
+
+/// A constraint kind resolved against the classes of its entities: one variant per row of the
+/// constraint table (format §1), with the entities in their roles. "Line" roles take lines and
+/// segments alike, "circle" roles every circle-like entity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Signature {
+    /// A dimension: a distance, an angle or a radius ([`Metric`]).
+    Metric(Metric),
+    /// Two points at the same place (DOC: the dimension).
+    CoincidentPoints(EntityIdx, EntityIdx),
     /// Two parallel lines (DOC 1 in 2D, 2 in 3D).
     ParallelLineLine(EntityIdx, EntityIdx),
     /// Two parallel planes (DOC 2).
@@ -124,8 +168,6 @@ pub enum Signature {
     },
     /// Two tangent spheres.
     TangentSphereSphere(EntityIdx, EntityIdx),
-    /// The radius of a circle or sphere.
-    Radius(EntityIdx),
     /// Two segments of equal length.
     EqualLength(EntityIdx, EntityIdx),
     /// A point at the middle of a segment (DOC: the dimension).
@@ -158,13 +200,8 @@ impl Signature {
         use ConstraintKind as K;
         use Signature as S;
         match self {
+            S::Metric(m) => m.kind(),
             S::CoincidentPoints(..) => K::Coincident,
-            S::DistancePointPoint(..)
-            | S::DistancePointLine { .. }
-            | S::DistancePointPlane { .. }
-            | S::DistanceLineLine(..)
-            | S::DistancePlanePlane(..) => K::Distance,
-            S::AngleLineLine(..) | S::AnglePlanePlane(..) | S::AngleLinePlane { .. } => K::Angle,
             S::ParallelLineLine(..) | S::ParallelPlanePlane(..) | S::ParallelLinePlane { .. } => {
                 K::Parallel
             }
@@ -180,7 +217,6 @@ impl Signature {
             | S::TangentCircleCircle(..)
             | S::TangentPlaneSphere { .. }
             | S::TangentSphereSphere(..) => K::Tangent,
-            S::Radius(_) => K::Radius,
             S::EqualLength(..) => K::EqualLength,
             S::Midpoint { .. } => K::Midpoint,
             S::Symmetric { .. } => K::Symmetric,
@@ -190,52 +226,43 @@ impl Signature {
         }
     }
 
-    /// The entities bound, with their roles as classes ([`Shape`]).
-    pub fn shape(self) -> Shape {
+    /// The entities bound, in role order.
+    pub fn entities(self) -> Vec<EntityIdx> {
         use Signature as S;
         match self {
-            S::CoincidentPoints(a, b) | S::DistancePointPoint(a, b) => Shape::PointPoint(a, b),
-            S::DistancePointLine { point, line } | S::IncidentPointLine { point, line } => {
-                Shape::PointLine { point, line }
-            }
-            S::DistancePointPlane { point, plane } | S::IncidentPointPlane { point, plane } => {
-                Shape::PointPlane { point, plane }
-            }
-            S::DistanceLineLine(a, b)
-            | S::AngleLineLine(a, b)
+            S::Metric(m) => m.entities(),
+            S::CoincidentPoints(a, b)
             | S::ParallelLineLine(a, b)
-            | S::PerpendicularLineLine(a, b) => Shape::LineLine(a, b),
-            S::DistancePlanePlane(a, b)
-            | S::AnglePlanePlane(a, b)
             | S::ParallelPlanePlane(a, b)
-            | S::PerpendicularPlanePlane(a, b) => Shape::PlanePlane(a, b),
-            S::AngleLinePlane { line, plane }
-            | S::ParallelLinePlane { line, plane }
+            | S::PerpendicularLineLine(a, b)
+            | S::PerpendicularPlanePlane(a, b)
+            | S::TangentCircleCircle(a, b)
+            | S::TangentSphereSphere(a, b)
+            | S::EqualLength(a, b) => vec![a, b],
+            S::IncidentPointLine { point, line: other }
+            | S::IncidentPointPlane { point, plane: other }
+            | S::IncidentPointCircle { point, circle: other }
+            | S::IncidentPointSphere { point, sphere: other }
+            | S::Midpoint { point, segment: other } => vec![point, other],
+            S::ParallelLinePlane { line, plane }
             | S::PerpendicularLinePlane { line, plane }
-            | S::IncidentLinePlane { line, plane } => Shape::LinePlane { line, plane },
-            S::IncidentPointCircle { point, circle } => Shape::PointCircle { point, circle },
-            S::IncidentPointSphere { point, sphere } => Shape::PointSphere { point, sphere },
-            S::TangentLineCircle { line, circle } => Shape::LineCircle { line, circle },
-            S::TangentCircleCircle(a, b) => Shape::CircleCircle(a, b),
-            S::TangentPlaneSphere { plane, sphere } => Shape::PlaneSphere { plane, sphere },
-            S::TangentSphereSphere(a, b) => Shape::SphereSphere(a, b),
-            S::Radius(e) => Shape::Round(e),
-            S::EqualLength(a, b) => Shape::SegmentSegment(a, b),
-            S::Midpoint { point, segment } => Shape::PointSegment { point, segment },
-            S::Symmetric { a, b, axis } => Shape::Symmetric { a, b, axis },
-            S::Horizontal(e) | S::Vertical(e) => Shape::Line(e),
-            S::Fix(e) => Shape::Single(e),
+            | S::IncidentLinePlane { line, plane } => vec![line, plane],
+            S::TangentLineCircle { line, circle } => vec![line, circle],
+            S::TangentPlaneSphere { plane, sphere } => vec![plane, sphere],
+            S::Symmetric { a, b, axis } => vec![a, b, axis],
+            S::Horizontal(e) | S::Vertical(e) | S::Fix(e) => vec![e],
         }
     }
 
-    /// The entities bound, in role order.
-    pub fn entities(self) -> Vec<EntityIdx> {
-        self.shape().entities()
+    /// The metric row (a measure the user dimensions: a distance, an angle, a radius);
+    /// `None` for the parameter-free rows.
+    pub fn metric(self) -> Option<Metric> {
+        if let Signature::Metric(m) = self { Some(m) } else { None }
     }
 
-    /// Whether the constraint carries a metric value (its kind's [`ConstraintKind::is_metric`]).
+    /// Whether the constraint carries a metric value ([`Signature::metric`]).
     pub fn is_metric(self) -> bool {
-        self.kind().is_metric()
+        self.metric().is_some()
     }
 
     /// Whether the constraint is absolute: not invariant under displacements.
@@ -262,6 +289,7 @@ impl Signature {
         use ConstraintKind as K;
         use Directions as D;
         use EntityClass as C;
+        use Metric as M;
         use Signature as S;
         let d2 = dim == Dim::Two;
         let n = dim.coords();
@@ -303,23 +331,23 @@ impl Signature {
                      planes)"
                 };
                 if let Some((a, b)) = pair(C::Point, C::Point) {
-                    Ok((S::DistancePointPoint(a, b), 1))
+                    Ok((S::Metric(M::DistancePointPoint(a, b)), 1))
                 } else if let Some((point, line)) = pair(C::Point, C::Line) {
-                    Ok((S::DistancePointLine { point, line }, 1))
+                    Ok((S::Metric(M::DistancePointLine { point, line }), 1))
                 } else if let Some((point, plane)) = pair(C::Point, C::Plane) {
-                    Ok((S::DistancePointPlane { point, plane }, 1))
+                    Ok((S::Metric(M::DistancePointPlane { point, plane }), 1))
                 } else if let Some((a, b)) = pair(C::Line, C::Line) {
-                    Ok((S::DistanceLineLine(a, b), 1))
+                    Ok((S::Metric(M::DistanceLineLine(a, b)), 1))
                 } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
-                    Ok((S::DistancePlanePlane(a, b), 1))
+                    Ok((S::Metric(M::DistancePlanePlane(a, b)), 1))
                 } else {
                     Err(expected)
                 }
             }
             K::Angle => Ok(match directions()? {
-                D::LineLine(a, b) => (S::AngleLineLine(a, b), 1),
-                D::PlanePlane(a, b) => (S::AnglePlanePlane(a, b), 1),
-                D::LinePlane { line, plane } => (S::AngleLinePlane { line, plane }, 1),
+                D::LineLine(a, b) => (S::Metric(M::AngleLineLine(a, b)), 1),
+                D::PlanePlane(a, b) => (S::Metric(M::AnglePlanePlane(a, b)), 1),
+                D::LinePlane { line, plane } => (S::Metric(M::AngleLinePlane { line, plane }), 1),
             }),
             K::Parallel => Ok(match directions()? {
                 D::LineLine(a, b) => (S::ParallelLineLine(a, b), if d2 { 1 } else { 2 }),
@@ -371,7 +399,7 @@ impl Signature {
             }
             K::Radius => single(C::Circle)
                 .or_else(|| single(C::Sphere))
-                .map(|e| (S::Radius(e), 1))
+                .map(|e| (S::Metric(M::Radius(e)), 1))
                 .ok_or(if d2 { "a circle" } else { "a sphere" }),
             K::EqualLength => match kinds {
                 [EntityKind::Segment, EntityKind::Segment] => {

@@ -62,120 +62,6 @@ impl Entity {
     }
 }
 
-/// The entities a constraint binds, with their roles resolved from the kinds (argument order
-/// in the file does not matter where the roles differ: `Distance(a: line, b: point)` is a
-/// point–line distance). "Line" roles take lines and segments alike.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Shape {
-    /// Two points.
-    PointPoint(EntityIdx, EntityIdx),
-    /// A point and a line or segment.
-    PointLine {
-        /// The point.
-        point: EntityIdx,
-        /// The line or segment.
-        line: EntityIdx,
-    },
-    /// A point and a plane.
-    PointPlane {
-        /// The point.
-        point: EntityIdx,
-        /// The plane.
-        plane: EntityIdx,
-    },
-    /// A point and a circle.
-    PointCircle {
-        /// The point.
-        point: EntityIdx,
-        /// The circle.
-        circle: EntityIdx,
-    },
-    /// A point and a sphere.
-    PointSphere {
-        /// The point.
-        point: EntityIdx,
-        /// The sphere.
-        sphere: EntityIdx,
-    },
-    /// Two lines or segments.
-    LineLine(EntityIdx, EntityIdx),
-    /// Two planes.
-    PlanePlane(EntityIdx, EntityIdx),
-    /// A line or segment and a plane.
-    LinePlane {
-        /// The line or segment.
-        line: EntityIdx,
-        /// The plane.
-        plane: EntityIdx,
-    },
-    /// A line or segment and a circle.
-    LineCircle {
-        /// The line or segment.
-        line: EntityIdx,
-        /// The circle.
-        circle: EntityIdx,
-    },
-    /// Two circles.
-    CircleCircle(EntityIdx, EntityIdx),
-    /// A plane and a sphere.
-    PlaneSphere {
-        /// The plane.
-        plane: EntityIdx,
-        /// The sphere.
-        sphere: EntityIdx,
-    },
-    /// Two spheres.
-    SphereSphere(EntityIdx, EntityIdx),
-    /// One circle or sphere (`Radius`).
-    Round(EntityIdx),
-    /// Two segments (`EqualLength`).
-    SegmentSegment(EntityIdx, EntityIdx),
-    /// A point and a segment (`Midpoint`).
-    PointSegment {
-        /// The point.
-        point: EntityIdx,
-        /// The segment.
-        segment: EntityIdx,
-    },
-    /// Two points and a line or segment (`Symmetric`).
-    Symmetric {
-        /// First point.
-        a: EntityIdx,
-        /// Second point.
-        b: EntityIdx,
-        /// The axis.
-        axis: EntityIdx,
-    },
-    /// One line or segment (`Horizontal`, `Vertical`).
-    Line(EntityIdx),
-    /// Any one entity (`Fix`).
-    Single(EntityIdx),
-}
-
-impl Shape {
-    /// The entities bound, in role order.
-    pub fn entities(&self) -> Vec<EntityIdx> {
-        match *self {
-            Shape::PointPoint(a, b)
-            | Shape::LineLine(a, b)
-            | Shape::PlanePlane(a, b)
-            | Shape::CircleCircle(a, b)
-            | Shape::SphereSphere(a, b)
-            | Shape::SegmentSegment(a, b) => vec![a, b],
-            Shape::PointLine { point, line: other }
-            | Shape::PointPlane { point, plane: other }
-            | Shape::PointCircle { point, circle: other }
-            | Shape::PointSphere { point, sphere: other }
-            | Shape::PointSegment { point, segment: other } => vec![point, other],
-            Shape::LinePlane { line, plane } => vec![line, plane],
-            Shape::LineCircle { line, circle } => vec![line, circle],
-            Shape::PlaneSphere { plane, sphere } => vec![plane, sphere],
-            Shape::Symmetric { a, b, axis } => vec![a, b, axis],
-            Shape::Round(e) | Shape::Line(e) | Shape::Single(e) => vec![e],
-        }
-    }
-}
-
 /// A constraint of a system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Constraint {
@@ -193,13 +79,6 @@ pub struct Constraint {
     pub doc: usize,
     /// Where the constraint is written, when it was read from a file.
     pub position: Option<Position>,
-}
-
-impl Constraint {
-    /// The entities bound, with their roles as classes.
-    pub fn shape(&self) -> Shape {
-        self.signature.shape()
-    }
 }
 
 /// Either kind of item an id can name.

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use gcs_model::{ConstraintKind, EntityKind, Shape, System};
+use gcs_model::{ConstraintKind, EntityKind, Signature, System};
 use proptest::prelude::*;
 
 fn manifest() -> &'static Path {
@@ -81,7 +81,7 @@ fn zoo_2d_doc_table() {
     // Roles are resolved whatever the argument order: Incident(a: circle, b: point).
     let oc = s.constraint(s.constraint_by_id("oc").unwrap());
     let (k, d) = (s.entity_by_id("k").unwrap(), s.entity_by_id("d").unwrap());
-    assert_eq!(oc.shape(), Shape::PointCircle { point: d, circle: k });
+    assert_eq!(oc.signature, Signature::IncidentPointCircle { point: d, circle: k });
     assert_eq!(oc.args, vec![k, d], "args keep the file's order");
     // A segment is the line through its points.
     let ab = s.entity_by_id("ab").unwrap();

@@ -64,6 +64,27 @@ pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
     fn magnitude(&self) -> f64;
 }
 
+/// `add`, `sub`, `mul` and `neg` of a type whose references have the standard operators.
+macro_rules! arithmetic_by_operators {
+    () => {
+        fn add(&self, rhs: &Self) -> Self {
+            self + rhs
+        }
+
+        fn sub(&self, rhs: &Self) -> Self {
+            self - rhs
+        }
+
+        fn mul(&self, rhs: &Self) -> Self {
+            self * rhs
+        }
+
+        fn neg(&self) -> Self {
+            -self
+        }
+    };
+}
+
 impl Field for BigRational {
     const NAME: &'static str = "rational";
     const EXACT: bool = true;
@@ -92,21 +113,7 @@ impl Field for BigRational {
         Ok(q.to_big())
     }
 
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-
-    fn neg(&self) -> Self {
-        -self
-    }
+    arithmetic_by_operators!();
 
     fn inv(&self) -> Option<Self> {
         if Zero::is_zero(self) { None } else { Some(self.recip()) }
@@ -203,21 +210,7 @@ impl Field for f64 {
         if q.is_small() { Ok(q.to_f64()) } else { Self::from_rational(&q.big_cow()) }
     }
 
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-
-    fn neg(&self) -> Self {
-        -self
-    }
+    arithmetic_by_operators!();
 
     fn inv(&self) -> Option<Self> {
         if *self == 0.0 { None } else { Some(1.0 / self) }

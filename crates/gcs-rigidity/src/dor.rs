@@ -101,7 +101,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use gcs_model::{Dim, EntityClass, EntityIdx, Signature, System};
+use gcs_model::{Dim, EntityClass, EntityIdx, Metric, Signature, System};
 
 /// Computes the degree of rigidity of a set of entities of a system.
 ///
@@ -379,8 +379,12 @@ impl Facts {
                 S::ParallelLineLine(a, b) => dirs.union(line_node(a), line_node(b), 0),
                 // A distance between two lines only exists for parallel lines in the plane
                 // (format §1), and between two planes only for parallel planes.
-                S::DistanceLineLine(a, b) if two_d => dirs.union(line_node(a), line_node(b), 0),
-                S::DistancePlanePlane(a, b) => dirs.union(plane_node[&a.0], plane_node[&b.0], 0),
+                S::Metric(Metric::DistanceLineLine(a, b)) if two_d => {
+                    dirs.union(line_node(a), line_node(b), 0)
+                }
+                S::Metric(Metric::DistancePlanePlane(a, b)) => {
+                    dirs.union(plane_node[&a.0], plane_node[&b.0], 0)
+                }
                 S::PerpendicularLineLine(a, b) => {
                     if two_d {
                         dirs.union(line_node(a), line_node(b), 1);
@@ -410,13 +414,13 @@ impl Facts {
                 // rules chain (metric values are not read; incidences to lines are carriers,
                 // above).
                 S::CoincidentPoints(..)
-                | S::DistancePointPoint(..)
-                | S::DistancePointLine { .. }
-                | S::DistancePointPlane { .. }
-                | S::DistanceLineLine(..)
-                | S::AngleLineLine(..)
-                | S::AnglePlanePlane(..)
-                | S::AngleLinePlane { .. }
+                | S::Metric(Metric::DistancePointPoint(..))
+                | S::Metric(Metric::DistancePointLine { .. })
+                | S::Metric(Metric::DistancePointPlane { .. })
+                | S::Metric(Metric::DistanceLineLine(..))
+                | S::Metric(Metric::AngleLineLine(..))
+                | S::Metric(Metric::AnglePlanePlane(..))
+                | S::Metric(Metric::AngleLinePlane { .. })
                 | S::IncidentPointLine { .. }
                 | S::IncidentPointCircle { .. }
                 | S::IncidentPointSphere { .. }
@@ -424,7 +428,7 @@ impl Facts {
                 | S::TangentCircleCircle(..)
                 | S::TangentPlaneSphere { .. }
                 | S::TangentSphereSphere(..)
-                | S::Radius(_)
+                | S::Metric(Metric::Radius(_))
                 | S::EqualLength(..)
                 | S::Midpoint { .. }
                 | S::Symmetric { .. }

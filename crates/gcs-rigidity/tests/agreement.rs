@@ -4,9 +4,6 @@
 //! contains a constraint the witness analysis finds redundant.
 
 use gcs_analysis::{AnalysisOptions, analyze};
-use gcs_model::Dim;
-use gcs_model::generate::{framework, laman_edges, random_coords};
-use gcs_model::rng::SplitMix64;
 use gcs_rigidity::{RuleDor, Verdict, dense_analysis, over_rigid_analysis};
 use proptest::prelude::*;
 
@@ -20,20 +17,7 @@ proptest! {
         removed in 0usize..3,
         added in 0usize..3,
     ) {
-        let mut rng = SplitMix64::new(seed);
-        let mut edges = laman_edges(n, 0.5, &mut rng);
-        for _ in 0..removed.min(edges.len().saturating_sub(1)) {
-            let i = rng.below(edges.len() as u64) as usize;
-            edges.remove(i);
-        }
-        for _ in 0..added {
-            let (a, b) = (rng.below(n as u64) as usize, rng.below(n as u64) as usize);
-            if a != b && !edges.contains(&(a, b)) && !edges.contains(&(b, a)) {
-                edges.push((a, b));
-            }
-        }
-        let coords = random_coords(n, Dim::Two, 1000, &mut rng);
-        let s = framework("random", Dim::Two, &coords, &edges);
+        let (s, _) = gcs_suite::random_bar_framework(seed, n, removed, added);
         let w = analyze(&s, &AnalysisOptions::default()).unwrap();
         let witness_verdict = if !w.redundant.is_empty() {
             Verdict::OverRigid

@@ -7,11 +7,7 @@ use gcs_rigidity::{
     minimal_dense, minimal_over_rigid, object_dor, over_rigid, structural_analysis,
 };
 
-fn load(relative: &str) -> System {
-    let path = format!("{}/../../data/{relative}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    System::from_ron_str(&text, Some(&path)).unwrap_or_else(|e| panic!("{e}"))
-}
+use gcs_suite::load;
 
 fn ids(system: &System, entities: &[EntityIdx]) -> Vec<String> {
     entities.iter().map(|e| system.entity(*e).id.clone()).collect()
@@ -83,7 +79,7 @@ fn check_invariants(system: &System, r: &StructuralReport) {
 
 #[test]
 fn flow_fig1a_dense_is_fooled_by_parallel_lines() {
-    let s = load("paper/flow_fig1a.ron");
+    let s = load("data/paper/flow_fig1a.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     // Dense: overload 3 on par_AB cannot be absorbed by A and B (4 DOF for 2 + 3).
@@ -111,7 +107,7 @@ fn flow_fig1a_dense_is_fooled_by_parallel_lines() {
 
 #[test]
 fn flow_fig1b_over_rigid_finds_acdef() {
-    let s = load("paper/flow_fig1b.ron");
+    let s = load("data/paper/flow_fig1b.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     assert_eq!(r.over_rigid.verdict, Verdict::OverRigid);
@@ -159,7 +155,7 @@ fn flow_fig1b_over_rigid_finds_acdef() {
 
 #[test]
 fn double_banana_fools_the_counts() {
-    let s = load("paper/double_banana.ron");
+    let s = load("data/paper/double_banana.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     // Over-Rigid (es_rigidity): no subsystem with DOF < DOR, DOF 24 − 18 = 6 = DOR: well-rigid,
@@ -198,7 +194,7 @@ fn without_last_constraint(path: &str, last_id: &str) -> System {
 
 #[test]
 fn fig6_the_count_believes_the_last_distance() {
-    let s = load("paper/fig6_harmonic.ron");
+    let s = load("data/paper/fig6_harmonic.ron");
     let before = without_last_constraint("paper/fig6_harmonic.ron", "d_ay");
     assert_eq!(before.constraints().len() + 1, s.constraints().len());
     let r = analyse(&s);
@@ -223,7 +219,7 @@ fn fig6_the_count_believes_the_last_distance() {
 
 #[test]
 fn kite_is_over_rigid() {
-    let s = load("paper/kite.ron");
+    let s = load("data/paper/kite.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     for a in [&r.dense, &r.over_rigid] {
@@ -241,7 +237,7 @@ fn kite_is_over_rigid() {
 #[test]
 fn cad_sketches_with_absolute_constraints() {
     // Fully dimensioned rectangle: well-rigid (with the frame: 8 + 3 − 8 = 3 = DOR).
-    let s = load("sketches/rectangle.ron");
+    let s = load("data/sketches/rectangle.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     assert_eq!(r.dense.verdict, Verdict::WellRigid);
@@ -250,7 +246,7 @@ fn cad_sketches_with_absolute_constraints() {
     assert!(r.dm.over.constraints.is_empty() && r.dm.under.constraints.is_empty());
 
     // Over-dimensioned: one DOC too many, the base flow is not saturated.
-    let s = load("sketches/rectangle_overdimensioned.ron");
+    let s = load("data/sketches/rectangle_overdimensioned.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     assert_eq!(r.dense.verdict, Verdict::OverRigid);
@@ -264,14 +260,14 @@ fn cad_sketches_with_absolute_constraints() {
     assert!(!r.dm.over.constraints.is_empty());
 
     // Four-bar linkage: one DOF left.
-    let s = load("sketches/four_bar.ron");
+    let s = load("data/sketches/four_bar.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     assert_eq!(r.over_rigid.verdict, Verdict::UnderRigid);
     assert_eq!(r.over_rigid.dof - r.over_rigid.dor as i64, 1);
 
     // The slot: circles, tangents, perpendiculars, a fixed origin: well-rigid.
-    let s = load("sketches/slot.ron");
+    let s = load("data/sketches/slot.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     assert_eq!(r.over_rigid.verdict, Verdict::WellRigid);
@@ -281,7 +277,7 @@ fn cad_sketches_with_absolute_constraints() {
     assert_eq!(ids(&s, &r.dense.subsystem.as_ref().unwrap().objects), ["c1"]);
 
     // The block corner: 21 DOF, 16 DOC < 6 + 16: the count sees the redundant diagonal.
-    let s = load("sketches/block_3d.ron");
+    let s = load("data/sketches/block_3d.ron");
     let r = analyse(&s);
     check_invariants(&s, &r);
     assert_eq!(r.over_rigid.verdict, Verdict::OverRigid);

@@ -37,8 +37,8 @@ use crate::qla::Q;
 
 pub(crate) use line::{Line2, Line3};
 pub(crate) use plane::Plane;
-pub(crate) use point::{Point2, Point3};
-pub(crate) use round::{Circle, Sphere};
+pub(crate) use point::Point;
+pub(crate) use round::Round;
 
 /// How one kind of entity is represented, in one dimension.
 ///
@@ -148,11 +148,11 @@ macro_rules! dispatch {
     ($repr:expr, $t:ident => $e:expr) => {
         match $repr {
             Repr::Point2 => {
-                type $t = Point2;
+                type $t = Point<2>;
                 $e
             }
             Repr::Point3 => {
-                type $t = Point3;
+                type $t = Point<3>;
                 $e
             }
             Repr::Line2 => {
@@ -164,7 +164,7 @@ macro_rules! dispatch {
                 $e
             }
             Repr::Circle => {
-                type $t = Circle;
+                type $t = Round<2>;
                 $e
             }
             Repr::Plane => {
@@ -172,7 +172,7 @@ macro_rules! dispatch {
                 $e
             }
             Repr::Sphere => {
-                type $t = Sphere;
+                type $t = Round<3>;
                 $e
             }
         }
