@@ -112,8 +112,19 @@ impl ConstraintKind {
         ConstraintKind::Fix,
     ];
 
+    /// The variant names used in model files, in the order of [`ConstraintKind::ALL`].
+    pub const NAMES: [&'static str; ConstraintKind::ALL.len()] = {
+        let mut names = [""; ConstraintKind::ALL.len()];
+        let mut i = 0;
+        while i < names.len() {
+            names[i] = ConstraintKind::ALL[i].name();
+            i += 1;
+        }
+        names
+    };
+
     /// The variant name used in model files.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             ConstraintKind::Coincident => "Coincident",
             ConstraintKind::Distance => "Distance",
@@ -160,22 +171,29 @@ impl ConstraintKind {
         self.role() == Role::Absolute
     }
 
-    /// The names of the entity fields the constraint takes, in order.
-    pub fn fields(self) -> &'static [&'static str] {
+    /// The fields of the constraint's RON form (format §1), in order: `id`, the entity fields,
+    /// and `value` for a metric kind.
+    pub fn ron_fields(self) -> &'static [&'static str] {
         use ConstraintKind as K;
         match self {
-            K::Radius | K::Horizontal | K::Vertical | K::Fix => &["a"],
-            K::Midpoint => &["point", "segment"],
-            K::Symmetric => &["a", "b", "axis"],
+            K::Distance | K::Angle => &["id", "a", "b", "value"],
+            K::Radius => &["id", "a", "value"],
+            K::Horizontal | K::Vertical | K::Fix => &["id", "a"],
+            K::Midpoint => &["id", "point", "segment"],
+            K::Symmetric => &["id", "a", "b", "axis"],
             K::Coincident
-            | K::Distance
-            | K::Angle
             | K::Parallel
             | K::Perpendicular
             | K::Incident
             | K::Tangent
-            | K::EqualLength => &["a", "b"],
+            | K::EqualLength => &["id", "a", "b"],
         }
+    }
+
+    /// The names of the entity fields the constraint takes, in order.
+    pub fn fields(self) -> &'static [&'static str] {
+        let all = self.ron_fields();
+        &all[1..all.len() - usize::from(self.is_metric())]
     }
 }
 

@@ -22,104 +22,100 @@ struct RawSystem {
     constraints: Vec<RawConstraint>,
 }
 
-#[derive(Deserialize)]
-#[serde(rename = "Constraint", deny_unknown_fields)]
-enum RawConstraint {
-    Coincident {
-        id: String,
-        a: String,
-        b: String,
-    },
-    Distance {
-        id: String,
-        a: String,
-        b: String,
-        #[serde(default)]
-        value: Option<Num>,
-    },
-    Angle {
-        id: String,
-        a: String,
-        b: String,
-        #[serde(default)]
-        value: Option<Num>,
-    },
-    Parallel {
-        id: String,
-        a: String,
-        b: String,
-    },
-    Perpendicular {
-        id: String,
-        a: String,
-        b: String,
-    },
-    Incident {
-        id: String,
-        a: String,
-        b: String,
-    },
-    Tangent {
-        id: String,
-        a: String,
-        b: String,
-    },
-    Radius {
-        id: String,
-        a: String,
-        #[serde(default)]
-        value: Option<Num>,
-    },
-    EqualLength {
-        id: String,
-        a: String,
-        b: String,
-    },
-    Midpoint {
-        id: String,
-        point: String,
-        segment: String,
-    },
-    Symmetric {
-        id: String,
-        a: String,
-        b: String,
-        axis: String,
-    },
-    Horizontal {
-        id: String,
-        a: String,
-    },
-    Vertical {
-        id: String,
-        a: String,
-    },
-    Fix {
-        id: String,
-        a: String,
-    },
+/// A constraint as written in a model file: its kind (the variant name), id, entity ids in the
+/// order of [`ConstraintKind::fields`], and value. Read generically from the kinds' field
+/// table ([`ConstraintKind::ron_fields`]), so that a new kind needs no code here.
+struct RawConstraint {
+    kind: ConstraintKind,
+    id: String,
+    args: Vec<String>,
+    value: Option<Num>,
 }
 
-impl RawConstraint {
-    fn parts(&self) -> (ConstraintKind, &str, Vec<&str>, Option<&Num>) {
-        use ConstraintKind as K;
-        use RawConstraint as R;
-        match self {
-            R::Coincident { id, a, b } => (K::Coincident, id, vec![a, b], None),
-            R::Distance { id, a, b, value } => (K::Distance, id, vec![a, b], value.as_ref()),
-            R::Angle { id, a, b, value } => (K::Angle, id, vec![a, b], value.as_ref()),
-            R::Parallel { id, a, b } => (K::Parallel, id, vec![a, b], None),
-            R::Perpendicular { id, a, b } => (K::Perpendicular, id, vec![a, b], None),
-            R::Incident { id, a, b } => (K::Incident, id, vec![a, b], None),
-            R::Tangent { id, a, b } => (K::Tangent, id, vec![a, b], None),
-            R::Radius { id, a, value } => (K::Radius, id, vec![a], value.as_ref()),
-            R::EqualLength { id, a, b } => (K::EqualLength, id, vec![a, b], None),
-            R::Midpoint { id, point, segment } => (K::Midpoint, id, vec![point, segment], None),
-            R::Symmetric { id, a, b, axis } => (K::Symmetric, id, vec![a, b, axis], None),
-            R::Horizontal { id, a } => (K::Horizontal, id, vec![a], None),
-            R::Vertical { id, a } => (K::Vertical, id, vec![a], None),
-            R::Fix { id, a } => (K::Fix, id, vec![a], None),
+impl<'de> Deserialize<'de> for RawConstraint {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::{self, EnumAccess, MapAccess, VariantAccess, Visitor};
+
+        /// The variant name.
+        struct Kind(ConstraintKind);
+        impl<'de> Deserialize<'de> for Kind {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                struct V;
+                impl Visitor<'_> for V {
+                    type Value = Kind;
+                    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                        f.write_str("a constraint kind")
+                    }
+                    fn visit_str<E: de::Error>(self, v: &str) -> Result<Kind, E> {
+                        ConstraintKind::ALL
+                            .into_iter()
+                            .find(|k| k.name() == v)
+                            .map(Kind)
+                            .ok_or_else(|| E::unknown_variant(v, &ConstraintKind::NAMES))
+                    }
+                }
+                d.deserialize_identifier(V)
+            }
         }
+
+        /// The fields of one kind.
+        struct Fields(ConstraintKind);
+        impl<'de> Visitor<'de> for Fields {
+            type Value = RawConstraint;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                write!(f, "the fields of {}", self.0.name())
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawConstraint, A::Error> {
+                let kind = self.0;
+                let names = kind.ron_fields();
+                let entity_fields = kind.fields();
+                let mut id = None;
+                let mut args: Vec<Option<String>> = vec![None; entity_fields.len()];
+                let mut value: Option<Option<Num>> = None;
+                while let Some(key) = map.next_key::<String>()? {
+                    let Some(&field) = names.iter().find(|n| **n == key) else {
+                        return Err(de::Error::unknown_field(&key, names));
+                    };
+                    if field == "id" {
+                        if id.is_some() {
+                            return Err(de::Error::duplicate_field("id"));
+                        }
+                        id = Some(map.next_value::<String>()?);
+                    } else if field == "value" {
+                        if value.is_some() {
+                            return Err(de::Error::duplicate_field("value"));
+                        }
+                        value = Some(map.next_value::<Option<Num>>()?);
+                    } else if let Some(i) = entity_fields.iter().position(|f| *f == field) {
+                        if args[i].is_some() {
+                            return Err(de::Error::duplicate_field(field));
+                        }
+                        args[i] = Some(map.next_value::<String>()?);
+                    }
+                }
+                let id = id.ok_or_else(|| de::Error::missing_field("id"))?;
+                let args = args
+                    .into_iter()
+                    .zip(entity_fields)
+                    .map(|(a, f)| a.ok_or_else(|| de::Error::missing_field(f)))
+                    .collect::<Result<Vec<String>, _>>()?;
+                Ok(RawConstraint { kind, id, args, value: value.flatten() })
+            }
+        }
+
+        struct Variant;
+        impl<'de> Visitor<'de> for Variant {
+            type Value = RawConstraint;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a constraint")
+            }
+            fn visit_enum<A: EnumAccess<'de>>(self, data: A) -> Result<RawConstraint, A::Error> {
+                let (Kind(kind), variant) = data.variant::<Kind>()?;
+                variant.struct_variant(kind.ron_fields(), Fields(kind))
+            }
+        }
+
+        d.deserialize_enum("Constraint", &ConstraintKind::NAMES, Variant)
     }
 }
 
@@ -175,9 +171,10 @@ fn add_entity(b: &mut SystemBuilder, raw: &RawEntity) -> Result<(), ModelError> 
 }
 
 fn add_constraint(b: &mut SystemBuilder, raw: &RawConstraint) -> Result<(), ModelError> {
-    let (kind, id, args, value) = raw.parts();
-    let value = value.map(|v| number("constraint", id, "value", v)).transpose()?;
-    b.constraint(kind, id, &args, value)?;
+    let id = raw.id.as_str();
+    let value = raw.value.as_ref().map(|v| number("constraint", id, "value", v)).transpose()?;
+    let args: Vec<&str> = raw.args.iter().map(String::as_str).collect();
+    b.constraint(raw.kind, id, &args, value)?;
     Ok(())
 }
 

@@ -104,6 +104,22 @@ fn every_bad_file_has_its_message() {
             "unknown_variant.ron:3:16: RON syntax: Unexpected variant named `Pt` in enum `Entity`, expected one of `Point`, `Line`, `Segment`, `Circle`, `Plane`, or `Sphere` instead",
         ),
         (
+            "constraint_unknown_field.ron",
+            "constraint_unknown_field.ron:3:51: RON syntax: Unexpected field named `valu` in `Distance`, expected one of `id`, `a`, `b`, or `value` instead",
+        ),
+        (
+            "constraint_unknown_variant.ron",
+            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, or `Fix` instead",
+        ),
+        (
+            "constraint_missing_field.ron",
+            "constraint_missing_field.ron:3:41: RON syntax: Unexpected missing field named `b` in `Distance`",
+        ),
+        (
+            "constraint_value_not_taken.ron",
+            "constraint_value_not_taken.ron:3:53: RON syntax: Unexpected field named `value` in `Coincident`, expected one of `id`, `a`, or `b` instead",
+        ),
+        (
             "constraint_as_entity.ron",
             "constraint_as_entity.ron:6:38: constraint \"d\": field b: \"h\" is a constraint, not an entity",
         ),
