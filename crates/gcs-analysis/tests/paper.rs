@@ -457,6 +457,17 @@ const CLAIMS: &[Claim] = &[
         clusters: None,
     },
     Claim {
+        file: "data/sketches/flange.ron",
+        unknowns: Some(11),
+        equations: Some(10),
+        rank: 8,
+        dof_absolute: 3,
+        trivial_motions: 3,
+        dof: 0,
+        redundant: &[("c_hub_rim", &["c_bore_hub", "c_bore_rim"])],
+        clusters: None,
+    },
+    Claim {
         file: "data/sketches/four_bar.ron",
         unknowns: Some(8),
         equations: Some(7),
@@ -509,6 +520,7 @@ const CLAIMS: &[Claim] = &[
 
 /// The models whose header says: one cluster, every entity and every constraint.
 const WHOLE: &[&str] = &[
+    "data/sketches/flange.ron",
     "data/paper/fig9a_w_decomposable.ron",
     "data/paper/fig9b_w_indecomposable.ron",
     "data/paper/fig9c_w_indecomposable_member.ron",

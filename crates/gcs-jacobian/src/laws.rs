@@ -241,6 +241,7 @@ pub(crate) fn law<F: Field>(
                 .variants(2)
                 .split(want_split, || (d, vec![rr]))
         }
+        S::ConcentricCircles(p, q) => Law::exact(v::sub(&l.round(p).0, &l.round(q).0)),
         S::Metric(Metric::Radius(e)) => Law::measure(l.round(e).1),
         S::EqualLength(s, t) => {
             let (p1, q1) = l.segment(s);

@@ -77,6 +77,8 @@ pub enum ConstraintKind {
     Incident,
     /// Tangency between a line and a circle, two circles, a plane and a sphere, two spheres.
     Tangent,
+    /// Two circles with the same centre.
+    Concentric,
     /// The radius of a circle or sphere.
     Radius,
     /// Two segments of equal length.
@@ -95,7 +97,7 @@ pub enum ConstraintKind {
 
 impl ConstraintKind {
     /// Every constraint kind, in the order of the format's table.
-    pub const ALL: [ConstraintKind; 14] = [
+    pub const ALL: [ConstraintKind; 15] = [
         ConstraintKind::Coincident,
         ConstraintKind::Distance,
         ConstraintKind::Angle,
@@ -103,6 +105,7 @@ impl ConstraintKind {
         ConstraintKind::Perpendicular,
         ConstraintKind::Incident,
         ConstraintKind::Tangent,
+        ConstraintKind::Concentric,
         ConstraintKind::Radius,
         ConstraintKind::EqualLength,
         ConstraintKind::Midpoint,
@@ -133,6 +136,7 @@ impl ConstraintKind {
             ConstraintKind::Perpendicular => "Perpendicular",
             ConstraintKind::Incident => "Incident",
             ConstraintKind::Tangent => "Tangent",
+            ConstraintKind::Concentric => "Concentric",
             ConstraintKind::Radius => "Radius",
             ConstraintKind::EqualLength => "EqualLength",
             ConstraintKind::Midpoint => "Midpoint",
@@ -154,6 +158,7 @@ impl ConstraintKind {
             | K::Perpendicular
             | K::Incident
             | K::Tangent
+            | K::Concentric
             | K::EqualLength
             | K::Midpoint
             | K::Symmetric => Role::Relation,
@@ -186,6 +191,7 @@ impl ConstraintKind {
             | K::Perpendicular
             | K::Incident
             | K::Tangent
+            | K::Concentric
             | K::EqualLength => &["id", "a", "b"],
         }
     }

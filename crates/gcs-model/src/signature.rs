@@ -168,6 +168,8 @@ pub enum Signature {
     },
     /// Two tangent spheres.
     TangentSphereSphere(EntityIdx, EntityIdx),
+    /// Two circles with the same centre (DOC 2).
+    ConcentricCircles(EntityIdx, EntityIdx),
     /// Two segments of equal length.
     EqualLength(EntityIdx, EntityIdx),
     /// A point at the middle of a segment (DOC: the dimension).
@@ -217,6 +219,7 @@ impl Signature {
             | S::TangentCircleCircle(..)
             | S::TangentPlaneSphere { .. }
             | S::TangentSphereSphere(..) => K::Tangent,
+            S::ConcentricCircles(..) => K::Concentric,
             S::EqualLength(..) => K::EqualLength,
             S::Midpoint { .. } => K::Midpoint,
             S::Symmetric { .. } => K::Symmetric,
@@ -238,6 +241,7 @@ impl Signature {
             | S::PerpendicularPlanePlane(a, b)
             | S::TangentCircleCircle(a, b)
             | S::TangentSphereSphere(a, b)
+            | S::ConcentricCircles(a, b)
             | S::EqualLength(a, b) => vec![a, b],
             S::IncidentPointLine { point, line: other }
             | S::IncidentPointPlane { point, plane: other }
@@ -397,6 +401,9 @@ impl Signature {
                     Err(expected)
                 }
             }
+            K::Concentric => pair(C::Circle, C::Circle)
+                .map(|(a, b)| (S::ConcentricCircles(a, b), 2))
+                .ok_or("two circles"),
             K::Radius => single(C::Circle)
                 .or_else(|| single(C::Sphere))
                 .map(|e| (S::Metric(M::Radius(e)), 1))

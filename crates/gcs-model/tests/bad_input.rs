@@ -109,7 +109,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "constraint_unknown_variant.ron",
-            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, or `Fix` instead",
+            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, or `Fix` instead",
         ),
         (
             "constraint_missing_field.ron",

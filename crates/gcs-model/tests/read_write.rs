@@ -73,11 +73,16 @@ fn zoo_2d_doc_table() {
         ("tt", 1),
         ("r", 1),
         ("eq", 1),
+        ("cc", 2),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");
     }
-    assert_eq!(s.dof_sum(), 6 * 2 + 2 * 2 + 2 * 3);
+    assert_eq!(s.dof_sum(), 6 * 2 + 2 * 2 + 3 * 3);
+    // Every constraint kind exists in 2D, and the zoo has them all.
+    let kinds: std::collections::BTreeSet<ConstraintKind> =
+        s.constraints().iter().map(|c| c.kind).collect();
+    assert_eq!(kinds.len(), ConstraintKind::ALL.len());
     // Roles are resolved whatever the argument order: Incident(a: circle, b: point).
     let oc = s.constraint(s.constraint_by_id("oc").unwrap());
     let (k, d) = (s.entity_by_id("k").unwrap(), s.entity_by_id("d").unwrap());
@@ -133,8 +138,8 @@ fn zoo_3d_doc_table() {
     }
     let kinds: std::collections::BTreeSet<ConstraintKind> =
         s.constraints().iter().map(|c| c.kind).collect();
-    // All but the 2D-only kinds.
-    assert_eq!(kinds.len(), ConstraintKind::ALL.len() - 3);
+    // All but the 2D-only kinds: Symmetric, Horizontal, Vertical, Concentric.
+    assert_eq!(kinds.len(), ConstraintKind::ALL.len() - 4);
 }
 
 #[test]

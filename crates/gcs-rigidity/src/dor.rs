@@ -267,7 +267,10 @@ impl Facts {
         // Points: coincidence classes.
         let mut pparent: Vec<u32> = (0..n as u32).collect();
         for c in system.constraints() {
-            if let Signature::CoincidentPoints(a, b) = c.signature {
+            // Circles and spheres count as their centres: concentric circles coincide.
+            if let Signature::CoincidentPoints(a, b) | Signature::ConcentricCircles(a, b) =
+                c.signature
+            {
                 let (ra, rb) = (plain_find(&mut pparent, a.0), plain_find(&mut pparent, b.0));
                 if ra != rb {
                     pparent[ra as usize] = rb;
@@ -414,6 +417,7 @@ impl Facts {
                 // rules chain (metric values are not read; incidences to lines are carriers,
                 // above).
                 S::CoincidentPoints(..)
+                | S::ConcentricCircles(..)
                 | S::Metric(Metric::DistancePointPoint(..))
                 | S::Metric(Metric::DistancePointLine { .. })
                 | S::Metric(Metric::DistancePointPlane { .. })
