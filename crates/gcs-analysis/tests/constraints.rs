@@ -1,5 +1,5 @@
 //! Every constraint kind, in every shape it takes, in 2D and 3D, contributes exactly DOC
-//! equations independent at a generated witness (DESIGN.md: "a constraint contributes exactly
+//! equations independent at a generated witness (docs/design.md: "a constraint contributes exactly
 //! DOC independent rows at a generic witness"), and every entity kind alone admits exactly its
 //! degree of rigidity in trivial motions.
 

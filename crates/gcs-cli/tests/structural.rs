@@ -1,4 +1,4 @@
-//! `gcs analyze --structural` end to end: the `structural` section of FORMAT.md §3 on every model
+//! `gcs analyze --structural` end to end: the `structural` section of docs/format.md §3 on every model
 //! of `data/`, the papers' examples with what each method says, and the disagreements the text
 //! report names.
 

@@ -50,7 +50,7 @@ pub enum ClusterMethod {
     /// subsystems), done with the constraint graph: split it into biconnected blocks at its
     /// articulation entities; when every block is rigid by itself the clusters are the
     /// blocks, found by one small elimination per block and none of the whole system. Falls
-    /// back to [`ClusterMethod::Kernel`] where it does not apply (see [`open_chain`]'s docs
+    /// back to [`ClusterMethod::Kernel`] where it does not apply (see `open_chain`'s docs
     /// for the conditions, each checked exactly at the witness; with floats it never applies).
     /// Where it does not apply it costs a block decomposition and the plain echelon rank of
     /// the blocks up to the first one that is not rigid. The default.

@@ -1,4 +1,4 @@
-//! Witness configurations and the Jacobian at a witness (witness paper §2; DESIGN.md,
+//! Witness configurations and the Jacobian at a witness (witness paper §2; docs/design.md,
 //! "Numerical decisions").
 //!
 //! Given a validated [`gcs_model::System`]:

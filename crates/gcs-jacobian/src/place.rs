@@ -1,4 +1,4 @@
-//! Constructive placement of a rational witness (DESIGN.md, "Witness").
+//! Constructive placement of a rational witness (docs/design.md, "Witness").
 //!
 //! Entities are placed one at a time inside the solution set of their parameter-free
 //! constraints to the entities already placed. Those constraints are linear in the entity

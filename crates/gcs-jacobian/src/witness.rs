@@ -141,10 +141,10 @@ fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan) -> u
 /// Finds a witness of `system` (see the module documentation).
 ///
 /// # Errors
-/// [`JacobianError::NoWitness`] when the sketch is not a witness and no rational witness can
-/// be constructed, naming the entity and constraints where the construction stopped; and
-/// [`JacobianError::NotAWitness`] when the only configuration at hand violates a requirement
-/// that no placement can change (a distance between lines that are not parallel).
+/// [`JacobianError::NoWitness`] when the sketch is not a witness and no witness can be
+/// constructed (rational or, as a last resort, approximate), saying why by ids
+/// ([`crate::NoWitness`]): the entity and constraints where the construction stopped, or a
+/// requirement no placement can change (a distance between lines that are not parallel).
 pub fn find_witness(
     system: &System,
     layout: &Layout,

@@ -3,7 +3,7 @@
 //!
 //! A [`Signature`] is a constraint kind resolved against the classes of the entities it binds
 //! (argument order in the file does not matter where the roles differ: `Distance(a: line, b:
-//! point)` is [`Signature::DistancePointLine`]). Every layer that attaches something to a
+//! point)` is `Signature::Metric(Metric::DistancePointLine { .. })`). Every layer that attaches something to a
 //! constraint — its equations, its rule in the structural methods — matches on it, without a
 //! catch-all arm, so that adding a row here makes the compiler list every place that must learn
 //! about it.

@@ -8,8 +8,8 @@
 //!   [`ModP`] (integers modulo the Mersenne prime 2^61 − 1), [`ModPrime`] (any prime below
 //!   2^64) and `f64`. The trait is algebra only: its [`Field::is_zero`] is exact, and the float
 //!   tolerance is an explicit [`EchelonOptions::tolerance`].
-//! - [`Echelon`] is the incremental reduced row echelon form of the witness paper (Michelucci,
-//!   Foufou, Lamarque, Schreck, *Geometric constraints solving: some tracks*, 2006), §3.1:
+//! - [`Echelon`] is the incremental reduced row echelon form of the witness paper
+//!   (`docs/papers.md`), §3.1:
 //!   Jacobian rows are inserted constraint by constraint, each [`Insertion`] says whether the
 //!   row is independent (new pivot) or dependent, and a dependent row comes with the combination
 //!   of earlier rows that produces it (its support is the fundamental circuit, the constraints

@@ -13,10 +13,10 @@
 //! | Jermann et al.'s `Distribute` (virtual constraint `R` on a set) | [`Network::distribute`] | §4.2 |
 //! | Dense, Minimal_Dense (s_rigidity, Def. 3) | [`dense`], [`minimal_dense`], [`dense_analysis`] | §4.3; survey §4.1 |
 //! | degree of rigidity, rule table | [`DorOracle`], [`RuleDor`] | §2.4 (Def. 4), §4.3 (Def. 6); survey Def. 6 |
-//! | degree of rigidity, exact at a witness | [`WitnessDor`] | §2.4 ("equivalent to geometric theorem proving"); DESIGN.md "Trivial motions" |
+//! | degree of rigidity, exact at a witness | [`WitnessDor`] | §2.4 ("equivalent to geometric theorem proving"); docs/design.md, "Trivial motions" |
 //! | Over-Rigid over DOR-minimal sets (es_rigidity, Def. 4) | [`over_rigid`], [`minimal_over_rigid`], [`over_rigid_analysis`] | §4.3 |
 //! | Dulmage–Mendelsohn (Hopcroft–Karp, coarse and fine) | [`dm_decomposition`], [`dm`] | survey §4.2.1 "D-M" |
-//! | all of it for a report (FORMAT.md §3) | [`structural_analysis`] | |
+//! | all of it for a report (docs/format.md §3) | [`structural_analysis`] | |
 //!
 //! These methods count; they are fooled by geometry, and that is the point of running them
 //! beside the witness method: Dense calls two parallel 2D lines at a distance over-rigid

@@ -1,4 +1,4 @@
-//! The `structural` section of the report (FORMAT.md §3) as plain data.
+//! The `structural` section of the report (docs/format.md §3) as plain data.
 
 use gcs_model::{EntityIdx, System};
 
@@ -7,7 +7,7 @@ use crate::dor::DorOracle;
 use crate::network::Network;
 use crate::rigidity::{RigidityAnalysis, dense_analysis_in, over_rigid_analysis_in};
 
-/// Everything the structural methods say about a system: FORMAT.md §3's `dense`,
+/// Everything the structural methods say about a system: docs/format.md §3's `dense`,
 /// `over_rigid` (with the oracle's name in [`RigidityAnalysis::dor_source`]) and `dm`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct StructuralReport {
@@ -21,7 +21,7 @@ pub struct StructuralReport {
 
 impl RigidityAnalysis {
     /// The entities of the over-rigid subsystem (objects and the segments between them, in
-    /// file order), empty when none was found: FORMAT.md's `subsystem` before ids are put on.
+    /// file order), empty when none was found: docs/format.md's `subsystem` before ids are put on.
     pub fn subsystem_entities(&self) -> Vec<EntityIdx> {
         self.subsystem.as_ref().map(|s| s.entities()).unwrap_or_default()
     }

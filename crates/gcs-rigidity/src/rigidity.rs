@@ -27,7 +27,7 @@
 //!
 //! # Verdicts
 //!
-//! FORMAT.md §3: `over-rigid` when the method found a subsystem with fewer DOF than the
+//! docs/format.md §3: `over-rigid` when the method found a subsystem with fewer DOF than the
 //! displacements it was charged with; else `well-rigid` when the whole system's DOF equals its
 //! DOR (Dense: the dimension's displacement count `D`, as in s_rigidity); else `under-rigid`.
 //! When nothing is found but DOF(S) is below the comparison value (possible only without

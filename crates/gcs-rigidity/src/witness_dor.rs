@@ -1,4 +1,4 @@
-//! The exact degree of rigidity at a witness (DESIGN.md, "Trivial motions").
+//! The exact degree of rigidity at a witness (docs/design.md, "Trivial motions").
 //!
 //! With `T` the generators of the displacements (3 in 2D, 6 in 3D) written as velocities of
 //! every unknown at a witness ([`gcs_jacobian::motions::generators`]), the displacements that

@@ -124,7 +124,8 @@ fn normalisation<F: Field>(x: &[Dual<F>]) -> Dual<F> {
     norm
 }
 
-/// How an entity is represented: one variant per [`Representation`].
+/// How an entity is represented: one variant per representation (a type implementing the
+/// crate's `Representation` trait).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Repr {
     /// `x, y`.
