@@ -28,11 +28,14 @@ fn generated_witness_agrees_with_the_sketch() {
     for file in data_files() {
         let s = load(&file);
         let at_sketch = run(&s, Backend::Exact, 1);
-        assert_eq!(
-            at_sketch.witness.source,
-            WitnessSource::Sketch,
-            "{file}: the sketch is a witness"
-        );
+        // The sketch is a witness, except for the singular positions drawn on purpose, which
+        // the analysis moves off their special position.
+        let expected = if file.starts_with("data/singular/") {
+            WitnessSource::Perturbed
+        } else {
+            WitnessSource::Sketch
+        };
+        assert_eq!(at_sketch.witness.source, expected, "{file}");
         let stripped = strip_unfixed_sketch(&s);
         for seed in [1, 2] {
             let a = match gcs_analysis::analyze(&stripped, &common::options(Backend::Exact, seed)) {

@@ -18,6 +18,7 @@ use gcs_decompose::{
 };
 
 use crate::error::AnalysisError;
+use crate::sketch::SketchAnalysis;
 
 /// The arithmetic a part of the analysis was decided in.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,6 +122,9 @@ pub struct AnalysisOptions {
     /// elimination); past it, the subsystems not yet examined are reported as leaves and
     /// the statistics say the decomposition is incomplete.
     pub decomposition_budget: usize,
+    /// Whether to analyse the drawing itself (its rank, singular position, residuals):
+    /// [`Analysis::sketch`]. On by default.
+    pub sketch: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -133,6 +137,7 @@ impl Default for AnalysisOptions {
             removal_order: RemovalOrder::default(),
             cluster_method: ClusterMethod::default(),
             decomposition_budget: 20_000,
+            sketch: true,
         }
     }
 }
@@ -188,6 +193,10 @@ pub struct Analysis {
     pub decomposition: Option<Vec<DecompositionNode>>,
     /// Counters of the W-decomposition.
     pub decomposition_statistics: Option<Statistics>,
+    /// The drawing itself: its rank against the generic one, the dependencies at a singular
+    /// position, whether it satisfies its constraints (`None` when some entity has no sketch
+    /// position, or [`AnalysisOptions::sketch`] is off).
+    pub sketch: Option<SketchAnalysis>,
     /// For the float backend, the rank by faer's column-pivoted QR (when the matrix is small
     /// enough to be made dense), as a cross-check of the incremental elimination.
     pub float_qr_rank: Option<usize>,
@@ -234,13 +243,13 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
 }
 
 /// The outcome of inserting the rows, in some field.
-struct Outcome {
-    rank: usize,
+pub(crate) struct Outcome {
+    pub(crate) rank: usize,
     /// Per row: `None` if independent, else the rows of its combination.
-    dependent: Vec<Option<Vec<usize>>>,
-    trivial: usize,
-    proof: Option<Proof>,
-    float_qr_rank: Option<usize>,
+    pub(crate) dependent: Vec<Option<Vec<usize>>>,
+    pub(crate) trivial: usize,
+    pub(crate) proof: Option<Proof>,
+    pub(crate) float_qr_rank: Option<usize>,
 }
 
 /// The support of each dependent row's combination. With a tolerance (float backend), the
@@ -387,18 +396,17 @@ fn generic<F: Field>(
     ))
 }
 
-/// The analysis at a given witness.
-///
-/// # Errors
-/// As [`analyze`].
-pub fn analyze_at(
+/// The rank, the outcome of every row and the trivial motions at `witness` (any
+/// configuration with its plan) in the backend's arithmetic; with the number of rows and of
+/// entity-internal rows.
+pub(crate) fn rank_at(
     system: &System,
     layout: &Layout,
-    witness: Witness,
-    options: &AnalysisOptions,
-) -> Result<Analysis, AnalysisError> {
+    witness: &Witness,
+    backend: Backend,
+) -> Result<(Outcome, usize, usize), AnalysisError> {
     let tracked = EchelonOptions::tracked();
-    let (outcome, equations, internal) = match options.backend {
+    Ok(match backend {
         Backend::Exact => {
             let jacobian: Jacobian<BigRational> = witness.jacobian(system, layout)?;
             let generators = motions::generators::<BigRational>(system, layout, &witness.coords)?;
@@ -426,12 +434,12 @@ pub fn analyze_at(
                 internal,
             )
         }
-        Backend::Rational => generic::<BigRational>(system, layout, &witness, tracked)?,
-        Backend::ModP => generic::<ModP>(system, layout, &witness, tracked)?,
-        Backend::Rug => rug_backend(system, layout, &witness)?,
+        Backend::Rational => generic::<BigRational>(system, layout, witness, tracked)?,
+        Backend::ModP => generic::<ModP>(system, layout, witness, tracked)?,
+        Backend::Rug => rug_backend(system, layout, witness)?,
         Backend::Float { tolerance } => {
             let (mut outcome, n, internal) =
-                generic::<f64>(system, layout, &witness, EchelonOptions::float(tolerance))?;
+                generic::<f64>(system, layout, witness, EchelonOptions::float(tolerance))?;
             let jacobian: Jacobian<f64> = witness.jacobian(system, layout)?;
             if jacobian.ncols.saturating_mul(jacobian.rows.len()) <= QR_LIMIT {
                 // Rows scaled to a largest entry of 1 first: the QR threshold is relative to
@@ -448,12 +456,19 @@ pub fn analyze_at(
             }
             (outcome, n, internal)
         }
-    };
-    let owners: Vec<RowOwner> = {
-        // Owners do not depend on the field: rebuild them from a ModP assembly would cost a
-        // second evaluation, so derive them from the plan directly.
-        row_owners(system, layout, &witness)
-    };
+    })
+}
+
+/// The constraints with dependent rows, in file order, each with the earlier constraints of
+/// its circuits (entity-internal rows left out).
+pub(crate) fn redundancies(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+    outcome: &Outcome,
+) -> Vec<Redundancy> {
+    // Owners do not depend on the field: derived from the plan directly.
+    let owners = row_owners(system, layout, witness);
     let mut redundant: Vec<Redundancy> = Vec::new();
     for (row, dep) in outcome.dependent.iter().enumerate() {
         let Some(support) = dep else { continue };
@@ -479,6 +494,35 @@ pub fn analyze_at(
         r.spanning_group.sort();
         r.spanning_group.dedup();
     }
+    redundant
+}
+
+/// The analysis at a given witness.
+///
+/// # Errors
+/// As [`analyze`].
+pub fn analyze_at(
+    system: &System,
+    layout: &Layout,
+    witness: Witness,
+    options: &AnalysisOptions,
+) -> Result<Analysis, AnalysisError> {
+    let (outcome, equations, internal) = rank_at(system, layout, &witness, options.backend)?;
+    let redundant = redundancies(system, layout, &witness, &outcome);
+    let generic_dof = layout.ncols().saturating_sub(outcome.rank).saturating_sub(outcome.trivial);
+    let sketch = if options.sketch {
+        crate::sketch::analyse(
+            system,
+            layout,
+            &witness,
+            options.backend,
+            &outcome,
+            &redundant,
+            generic_dof,
+        )?
+    } else {
+        None
+    };
     let cluster_options = ClusterOptions {
         method: options.cluster_method,
         decompose: options.decompose,
@@ -540,6 +584,7 @@ pub fn analyze_at(
         decomposition,
         decomposition_statistics,
         float_qr_rank: outcome.float_qr_rank,
+        sketch,
     })
 }
 

@@ -29,9 +29,11 @@
 
 mod analysis;
 mod error;
+mod sketch;
 
 pub use analysis::{
     Analysis, AnalysisOptions, Arithmetic, Backend, Redundancy, analyze, analyze_at,
 };
 pub use error::AnalysisError;
 pub use gcs_decompose::{Cluster, ClusterMethod, DecompositionNode, RemovalOrder, Statistics};
+pub use sketch::{Configuration, Position, Residual, SketchAnalysis};

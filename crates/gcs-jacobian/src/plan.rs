@@ -113,6 +113,52 @@ pub(crate) fn plan_with<F: Field>(
     Ok(Ok(Plan { constraints: out }))
 }
 
+/// A plan at any configuration, satisfied or not (a drawing whose dimensions were edited, a
+/// sketch exported in floating point): each constraint in the branch whose residuals are
+/// smallest there (for a distance between 3D lines, the parallel formula exactly when they are
+/// parallel), with `doc` candidate rows independent there. With it, the Jacobian at the
+/// configuration ([`crate::Witness`] with these coordinates) is the one a user's drawing has.
+pub fn plan_anywhere<F: Field>(
+    system: &System,
+    layout: &Layout,
+    x: &[F],
+    sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<F>>,
+) -> Plan {
+    let mut out = Vec::with_capacity(system.constraints().len());
+    for ci in system.constraint_indices() {
+        let c = system.constraint(ci);
+        let base = system.constraint_base_entities(ci);
+        let local = Local::new(system, layout, &base, x);
+        let first = laws::law(c.signature, 0, &local, sketch, false);
+        let variant = match first.parallel(&|v: &F| v.is_zero()) {
+            Some(parallel) if first.variants == 2 => usize::from(parallel),
+            Some(_) => 0,
+            None => {
+                let size = |law: &laws::Law<F>| -> f64 {
+                    law.rows.iter().map(|r| r.value.magnitude()).sum()
+                };
+                let mut best = (size(&first), 0);
+                for v in 1..first.variants {
+                    let s = size(&laws::law(c.signature, v, &local, sketch, false));
+                    if s < best.0 {
+                        best = (s, v);
+                    }
+                }
+                best.1
+            }
+        };
+        let cand = if variant == 0 {
+            first
+        } else {
+            laws::law(c.signature, variant, &local, sketch, false)
+        };
+        let mut cp = select(layout, &base, &local, &cand.rows, c.doc, EchelonOptions::default());
+        cp.variant = variant;
+        out.push(cp);
+    }
+    Plan { constraints: out }
+}
+
 /// Keeps `doc` candidate rows independent at the witness, modulo the internal rows of the
 /// entities involved; when there are not enough, fills up with the first dependent ones and
 /// marks the constraint singular.

@@ -2,10 +2,11 @@
 //! data — [`Report`], serialisable both ways, with typed enums — and as text for people
 //! ([`text`]).
 
-use gcs_analysis::{Analysis, Arithmetic, Backend};
+use gcs_analysis::{Analysis, Arithmetic, Backend, Position, Redundancy, SketchAnalysis};
 use gcs_jacobian::WitnessSource;
 use gcs_model::{ConstraintIdx, System};
 use gcs_rank::Proof;
+use num_traits::ToPrimitive;
 use serde::{Deserialize, Serialize};
 
 use crate::clusters::{self, ClusterReport, NodeReport};
@@ -194,12 +195,99 @@ pub struct Report {
     pub structural: Option<StructuralReport>,
     /// The arithmetic the clusters were decided in.
     pub clusters_arithmetic: ArithmeticName,
+    /// The drawing itself (absent when some entity has no sketch position).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sketch: Option<SketchReport>,
+}
+
+/// A constraint far from what its drawing shows (`sketch.largest_residual`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ResidualReport {
+    /// Its id.
+    pub constraint: String,
+    /// For a dimension, its measure on the drawing minus its value (model units or degrees);
+    /// for another constraint, how far the drawing is from satisfying it to first order.
+    pub value: f64,
+}
+
+/// A special position recognised in the drawing (`sketch.configurations`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ConfigurationReport {
+    /// `coincident`, `collinear`, `coplanar`, `parallel` or `concurrent`.
+    pub kind: String,
+    /// The entities in that position.
+    pub entities: Vec<String>,
+    /// The distances whose lines are in it (concurrent bars).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub constraints: Vec<String>,
+}
+
+/// The drawing itself (format §4, `sketch`): its rank against the generic one.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SketchReport {
+    /// The rank of the Jacobian at the sketch's own coordinates.
+    pub rank: usize,
+    /// Below the generic rank: the drawing is at a special position.
+    pub singular: bool,
+    /// The constraints independent generically but dependent at the drawing, in file order,
+    /// with their spanning groups there.
+    pub dependent: Vec<RedundantReport>,
+    /// The infinitesimal motions the drawing admits beyond the generic ones.
+    pub extra_motions: usize,
+    /// Whether the drawing satisfies its constraints (dimensions to the precision they are
+    /// written with).
+    pub satisfied: bool,
+    /// When it does not: the constraint it is farthest from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub largest_residual: Option<ResidualReport>,
+    /// The special positions recognised among the entities of the dependent constraints.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub configurations: Vec<ConfigurationReport>,
+    /// How the exact backend proved the rank at the drawing (when it is not the witness).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub proof: Option<ProofName>,
+}
+
+impl SketchReport {
+    fn new(system: &System, s: &SketchAnalysis) -> SketchReport {
+        let id = |c: ConstraintIdx| system.constraint(c).id.clone();
+        SketchReport {
+            rank: s.rank,
+            singular: s.singular,
+            dependent: s.dependent.iter().map(|r| redundant_report(system, r)).collect(),
+            extra_motions: s.extra_motions,
+            satisfied: s.satisfied,
+            largest_residual: s
+                .largest_residual
+                .as_ref()
+                .map(|r| ResidualReport { constraint: id(r.constraint), value: r.value }),
+            configurations: s
+                .configurations
+                .iter()
+                .map(|c| ConfigurationReport {
+                    kind: c.position.name().to_owned(),
+                    entities: c.entities.iter().map(|e| system.entity(*e).id.clone()).collect(),
+                    constraints: c.constraints.iter().map(|k| id(*k)).collect(),
+                })
+                .collect(),
+            proof: s.proof.as_ref().map(ProofName::from),
+        }
+    }
+}
+
+fn redundant_report(system: &System, r: &Redundancy) -> RedundantReport {
+    let id = |c: ConstraintIdx| system.constraint(c).id.clone();
+    RedundantReport {
+        constraint: id(r.constraint),
+        rows: r.rows,
+        doc: r.doc,
+        spanning_group: r.spanning_group.iter().map(|c| id(*c)).collect(),
+    }
 }
 
 impl Report {
     /// The report of one model: `file` is the path as given; `structural` adds §3's section.
     pub fn new(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> Report {
-        let id = |c: ConstraintIdx| system.constraint(c).id.clone();
         Report {
             schema: SCHEMA,
             model: system.name().to_owned(),
@@ -217,16 +305,7 @@ impl Report {
             dof: a.dof,
             rigid: a.rigid(),
             well_constrained: a.well_constrained(),
-            redundant: a
-                .redundant
-                .iter()
-                .map(|r| RedundantReport {
-                    constraint: id(r.constraint),
-                    rows: r.rows,
-                    doc: r.doc,
-                    spanning_group: r.spanning_group.iter().map(|c| id(*c)).collect(),
-                })
-                .collect(),
+            redundant: a.redundant.iter().map(|r| redundant_report(system, r)).collect(),
             clusters: clusters::clusters_report(system, &a.clusters),
             decomposition: a
                 .decomposition
@@ -243,6 +322,7 @@ impl Report {
             float_qr_rank: a.float_qr_rank,
             structural: s.map(|s| structural::report(system, s)),
             clusters_arithmetic: a.clusters_arithmetic.into(),
+            sketch: a.sketch.as_ref().map(|sk| SketchReport::new(system, sk)),
         }
     }
 
@@ -327,6 +407,11 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
             format!("  redundant: {}{partial}: {fix}", describe_constraint(system, r.constraint)),
         );
     }
+    if let Some(sketch) = &a.sketch {
+        for line in drawing_text(system, &verdict, sketch) {
+            push(&mut out, line);
+        }
+    }
     let proof = match &a.proof {
         Some(p) => format!(" ({p})"),
         None => String::new(),
@@ -345,10 +430,32 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
             a.seed
         ),
     );
-    if let Some(why) = &a.witness.no_exact_witness {
-        push(&mut out, format!("  note: sketch not used as witness: {why}"));
-    } else if let Some(why) = &a.witness.sketch_rejected {
-        push(&mut out, format!("  note: sketch not used as witness: {why}"));
+    // Where the witness came from, when it is not the drawing itself, and why.
+    match a.witness.source {
+        WitnessSource::Sketch => {}
+        WitnessSource::Perturbed => push(
+            &mut out,
+            match &a.sketch {
+                Some(sk) => format!(
+                    "  note: the drawing is at a special position (rank {} there, {} \
+                     generically): the verdict was decided at a drawing moved slightly off it",
+                    sk.rank, a.rank
+                ),
+                None => "  note: a perturbation of the drawing raised the rank: the verdict was \
+                         decided at a drawing moved slightly off it"
+                    .to_owned(),
+            },
+        ),
+        WitnessSource::Generated => {
+            let why =
+                a.witness.sketch_rejected.as_ref().map_or_else(String::new, |w| w.to_string());
+            push(&mut out, format!("  note: sketch not used as witness: {why}"));
+        }
+        WitnessSource::Approximate => {
+            if let Some(why) = &a.witness.no_exact_witness {
+                push(&mut out, format!("  note: sketch not used as witness: {why}"));
+            }
+        }
     }
     // What is rigid, and so what still moves: the clusters.
     if !(a.rigid() && a.clusters.len() == 1) {
@@ -379,6 +486,69 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
         push(&mut out, structural::text(system, a, s));
     }
     out.pop();
+    out
+}
+
+/// What the text report says of the drawing: a singular position in words a CAD user knows,
+/// and a drawing that does not satisfy its constraints.
+fn drawing_text(system: &System, verdict: &str, s: &SketchAnalysis) -> Vec<String> {
+    let mut out = Vec::new();
+    if s.singular || !s.dependent.is_empty() {
+        let mut ids: Vec<&str> = Vec::new();
+        for d in &s.dependent {
+            for c in d.spanning_group.iter().chain(std::iter::once(&d.constraint)) {
+                let id = system.constraint(*c).id.as_str();
+                if !ids.contains(&id) {
+                    ids.push(id);
+                }
+            }
+        }
+        let named: Vec<String> = s
+            .configurations
+            .iter()
+            .map(|c| {
+                let verb = if c.position == Position::Coincident {
+                    "coincide".to_owned()
+                } else {
+                    format!("are {}", c.position.name())
+                };
+                if c.constraints.is_empty() {
+                    let entities: Vec<&str> =
+                        c.entities.iter().map(|e| system.entity(*e).id.as_str()).collect();
+                    format!("{} {verb}", entities.join(", "))
+                } else {
+                    let bars: Vec<&str> =
+                        c.constraints.iter().map(|k| system.constraint(*k).id.as_str()).collect();
+                    format!("the lines of {} {verb}", bars.join(", "))
+                }
+            })
+            .collect();
+        let cause =
+            if named.is_empty() { String::new() } else { format!(" ({})", named.join("; ")) };
+        let moves = match s.extra_motions {
+            0 => String::new(),
+            1 => ": it can move in one more way than a generic drawing".to_owned(),
+            n => format!(": it can move in {n} more ways than a generic drawing"),
+        };
+        out.push(format!(
+            "  singular at this drawing: {} are dependent here{cause}{moves}; generically \
+             {verdict} — move a point off the special position, or expect a solver to struggle",
+            ids.join(", ")
+        ));
+    }
+    if let Some(r) = &s.largest_residual {
+        let c = system.constraint(r.constraint);
+        let how = match c.value.as_ref().and_then(|v| v.to_f64()) {
+            Some(value) if c.kind.is_metric() => {
+                format!("measures {} on the drawing, dimensioned {value}", value + r.value)
+            }
+            _ => format!("the drawing is {:.3e} from it", r.value),
+        };
+        out.push(format!(
+            "  the drawing does not satisfy its constraints: farthest {}: {how}",
+            describe_constraint(system, r.constraint)
+        ));
+    }
     out
 }
 
