@@ -7,9 +7,9 @@ use gcs_jacobian::{
 };
 use gcs_model::{ConstraintIdx, System};
 use gcs_rank::{
-    BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP, Proof, Rat,
-    RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact, certify_rows, echelon_rank,
-    float_rank_qr,
+    AMBIGUITY_BAND, BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP,
+    Proof, Rat, RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact,
+    analyse_rows_with_margins, certify_rows, echelon_rank, float_rank_qr,
 };
 
 use gcs_decompose::{
@@ -197,6 +197,9 @@ pub struct Analysis {
     /// position, whether it satisfies its constraints (`None` when some entity has no sketch
     /// position, or [`AnalysisOptions::sketch`] is off).
     pub sketch: Option<SketchAnalysis>,
+    /// For the float backend, the constraints whose decision lies within the ambiguity band of
+    /// the tolerance (see [`uncertain`]), in file order; `None` for the exact backends.
+    pub uncertain: Option<Vec<ConstraintIdx>>,
     /// For the float backend, the rank by faer's column-pivoted QR (when the matrix is small
     /// enough to be made dense), as a cross-check of the incremental elimination.
     pub float_qr_rank: Option<usize>,
@@ -250,19 +253,26 @@ pub(crate) struct Outcome {
     pub(crate) trivial: usize,
     pub(crate) proof: Option<Proof>,
     pub(crate) float_qr_rank: Option<usize>,
+    /// Float path: the decision margin of every row ([`gcs_rank::Echelon::margin`]).
+    pub(crate) margins: Vec<f64>,
+    /// Float path: the dependent rows whose circuit has a coefficient near the noise cutoff.
+    pub(crate) ambiguous_supports: Vec<usize>,
 }
 
 /// The support of each dependent row's combination. With a tolerance (float backend), the
 /// coefficients below `√tolerance` times the largest are rounding noise, not part of the
-/// circuit, and are dropped.
+/// circuit, and are dropped; the rows of those within [`AMBIGUITY_BAND`] of that cutoff, on
+/// either side, are returned too (the dependent row, whose spanning group is uncertain).
 fn supports<F: Field>(
     analysis: &RowAnalysis<F>,
     tolerance: Option<f64>,
-) -> Vec<Option<Vec<usize>>> {
-    analysis
+) -> (Vec<Option<Vec<usize>>>, Vec<usize>) {
+    let mut ambiguous = Vec::new();
+    let dependent = analysis
         .outcomes
         .iter()
-        .map(|o| match o {
+        .enumerate()
+        .map(|(row, o)| match o {
             Insertion::Independent { .. } => None,
             Insertion::Dependent { combination } => Some(
                 combination
@@ -270,12 +280,18 @@ fn supports<F: Field>(
                     .map(|c| {
                         let max = c.iter().map(|(_, v)| v.magnitude()).fold(0.0, f64::max);
                         let floor = tolerance.map_or(0.0, |t| t.sqrt() * max);
+                        let near =
+                            |m: f64| m > floor / AMBIGUITY_BAND && m <= floor * AMBIGUITY_BAND;
+                        if tolerance.is_some() && c.iter().any(|(_, v)| near(v.magnitude())) {
+                            ambiguous.push(row);
+                        }
                         c.iter().filter(|(_, v)| v.magnitude() > floor).map(|(i, _)| *i).collect()
                     })
                     .unwrap_or_default(),
             ),
         })
-        .collect()
+        .collect();
+    (dependent, ambiguous)
 }
 
 /// The displacement generators as sparse rows.
@@ -363,6 +379,27 @@ fn generic<F: Field>(
     // Tracking combinations costs far more than the elimination (they fill in): find the rank
     // first and track only when some row turns out dependent. Exact fields find it in plain
     // row echelon form (no back-substitution); floats in the reduced form with the tolerance.
+    if options_tolerance.is_some() {
+        // The float path always tracks combinations: the margin of an independent row needs
+        // the amplification of its reduction ([`Echelon::margin`]), which is what tells a
+        // real remainder from cancellation noise.
+        let (analysis, margins) =
+            analyse_rows_with_margins(jacobian.ncols, jacobian.rows.iter().cloned(), options);
+        let (dependent, ambiguous_supports) = supports(&analysis, options_tolerance);
+        return Ok((
+            Outcome {
+                rank: analysis.rank,
+                dependent,
+                trivial,
+                proof: None,
+                float_qr_rank: None,
+                margins,
+                ambiguous_supports,
+            },
+            n,
+            internal,
+        ));
+    }
     let quick = if options_tolerance.is_none() {
         let (rank, pivots) = echelon_rank(jacobian.ncols, jacobian.rows.iter().cloned());
         let outcomes = pivots
@@ -386,10 +423,12 @@ fn generic<F: Field>(
     Ok((
         Outcome {
             rank: analysis.rank,
-            dependent: supports(&analysis, options_tolerance),
+            dependent: supports(&analysis, options_tolerance).0,
             trivial,
             proof: None,
             float_qr_rank: None,
+            margins: Vec::new(),
+            ambiguous_supports: Vec::new(),
         },
         n,
         internal,
@@ -429,6 +468,8 @@ pub(crate) fn rank_at(
                     trivial,
                     proof: Some(certified.proof),
                     float_qr_rank: None,
+                    margins: Vec::new(),
+                    ambiguous_supports: Vec::new(),
                 },
                 n,
                 internal,
@@ -497,6 +538,56 @@ pub(crate) fn redundancies(
     redundant
 }
 
+/// The constraints a float analysis is not sure of: those whose dependent/independent decision
+/// has a margin below [`AMBIGUITY_BAND`] ([`gcs_rank::Echelon::margin`]: a tolerance within that
+/// factor could have decided otherwise, or an independent remainder is small against what
+/// rounding can leave behind), those whose spanning group has a coefficient near the noise
+/// cutoff, and, when the rank contradicts the counts — more than the unknowns minus the trivial
+/// motions, or other than the column-pivoted QR's — as many of the least certain decisions as
+/// the contradiction needs.
+fn uncertain(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+    outcome: &Outcome,
+) -> Vec<ConstraintIdx> {
+    let owners = row_owners(system, layout, witness);
+    let constraint = |row: usize| match owners.get(row) {
+        Some(RowOwner::Constraint(c)) => Some(*c),
+        _ => None,
+    };
+    let mut out: Vec<ConstraintIdx> = Vec::new();
+    for (row, m) in outcome.margins.iter().enumerate() {
+        if *m < AMBIGUITY_BAND {
+            out.extend(constraint(row));
+        }
+    }
+    out.extend(outcome.ambiguous_supports.iter().filter_map(|r| constraint(*r)));
+    // Contradictions with the counts: the least certain decisions of the kind in excess.
+    let least = |independent: bool, count: usize, out: &mut Vec<ConstraintIdx>| {
+        let mut rows: Vec<(f64, usize)> = outcome
+            .margins
+            .iter()
+            .enumerate()
+            .filter(|(row, _)| {
+                outcome.dependent.get(*row).is_some_and(|d| d.is_none() == independent)
+            })
+            .map(|(row, m)| (*m, row))
+            .collect();
+        rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+        out.extend(rows.iter().take(count).filter_map(|(_, r)| constraint(*r)));
+    };
+    let excess = (outcome.rank + outcome.trivial).saturating_sub(layout.ncols());
+    least(true, excess, &mut out);
+    if let Some(q) = outcome.float_qr_rank {
+        least(true, outcome.rank.saturating_sub(q), &mut out);
+        least(false, q.saturating_sub(outcome.rank), &mut out);
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
 /// The analysis at a given witness.
 ///
 /// # Errors
@@ -509,6 +600,10 @@ pub fn analyze_at(
 ) -> Result<Analysis, AnalysisError> {
     let (outcome, equations, internal) = rank_at(system, layout, &witness, options.backend)?;
     let redundant = redundancies(system, layout, &witness, &outcome);
+    let uncertain = match options.backend {
+        Backend::Float { .. } => Some(uncertain(system, layout, &witness, &outcome)),
+        Backend::Exact | Backend::Rational | Backend::Rug | Backend::ModP => None,
+    };
     let generic_dof = layout.ncols().saturating_sub(outcome.rank).saturating_sub(outcome.trivial);
     let sketch = if options.sketch {
         crate::sketch::analyse(
@@ -585,6 +680,7 @@ pub fn analyze_at(
         decomposition_statistics,
         float_qr_rank: outcome.float_qr_rank,
         sketch,
+        uncertain,
     })
 }
 

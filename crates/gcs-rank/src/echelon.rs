@@ -131,7 +131,15 @@ pub struct Echelon<F> {
     /// list of a pivot column is exactly its pivot row.
     col_rows: Vec<Vec<usize>>,
     inserted: usize,
+    /// With a tolerance: the scale of every inserted row, by insertion id.
+    scales: Vec<f64>,
+    /// With a tolerance: the decision margin of every insertion ([`Echelon::margin`]).
+    margins: Vec<f64>,
 }
+
+/// How far a decision of the float path is from the tolerance it was taken at: decisions with
+/// a margin below this are within its ambiguity band ([`Echelon::margin`]).
+pub const AMBIGUITY_BAND: f64 = 100.0;
 
 /// Sorted, deduplicated copy of a lazy row list.
 fn dedup_rows(list: &[usize]) -> Vec<usize> {
@@ -152,7 +160,25 @@ impl<F: Field> Echelon<F> {
             pivot_of: vec![NONE; ncols],
             col_rows: vec![Vec::new(); ncols],
             inserted: 0,
+            scales: Vec::new(),
+            margins: Vec::new(),
         }
+    }
+
+    /// With a tolerance `t` (the float path): how far the decision on insertion `id` is from
+    /// the tolerance, a factor ≥ 1 when robust, below [`AMBIGUITY_BAND`] when a tolerance
+    /// within that factor of `t` could have decided otherwise. For a dependent row it is
+    /// `t·s / m`, with `s` its scale and `m` the largest entry the reduction left (and dropped
+    /// as negligible): infinite when nothing was left. For an independent row it is
+    /// `m / (t·a)`, with `m` the largest entry of its remainder and `a` the amplification of
+    /// the reduction — `Σ |c_j| s_j` over the combination `Σ c_j row_j` the remainder is —
+    /// which bounds the size of what rounding can leave behind: a remainder small against it
+    /// may be cancellation noise, however large against the row itself. Requires tracked
+    /// combinations for the amplification (without them, `a = s`). `None` without a tolerance
+    /// or for an id not inserted.
+    pub fn margin(&self, id: usize) -> Option<f64> {
+        self.options.tolerance?;
+        self.margins.get(id).copied()
     }
 
     /// The number of columns.
@@ -205,7 +231,12 @@ impl<F: Field> Echelon<F> {
         }
         let scale = self.row_scale(&row);
         let threshold = self.options.tolerance.map(|t| t * scale);
-        let negligible = |x: &F| threshold.is_some_and(|th| x.magnitude() <= th);
+        // Entries are dropped below the ambiguity band; the decision is taken at the threshold.
+        let floor = threshold.map(|th| th / AMBIGUITY_BAND);
+        let negligible = |x: &F| floor.is_some_and(|f| x.magnitude() <= f);
+        if self.options.tolerance.is_some() {
+            self.scales.push(scale);
+        }
 
         // Split the row into its entries on pivot columns (the coefficients of the pivot rows
         // to subtract) and the rest (moved, not cloned, into the remainder).
@@ -216,7 +247,12 @@ impl<F: Field> Echelon<F> {
         let terms: Vec<(&F, &[(usize, F)])> =
             used.iter().map(|&(coef, r)| (coef, self.rows[r].row.entries())).collect();
         let pivot_of = &self.pivot_of;
-        let reduced = linear_combination(rest, &terms, |c| pivot_of[c] != NONE, negligible);
+        let mut reduced = linear_combination(rest, &terms, |c| pivot_of[c] != NONE, negligible);
+        // The largest entry left, then those within the band dropped too (float path).
+        let left = reduced.iter().map(|(_, v)| v.magnitude()).fold(0.0, f64::max);
+        if let Some(th) = threshold {
+            reduced.retain(|(_, v)| v.magnitude() > th);
+        }
 
         // -Σ coef · comb(pivot row): the negated expression of the eliminated part.
         let comb_neg = if self.options.track_combinations {
@@ -228,11 +264,23 @@ impl<F: Field> Echelon<F> {
         };
 
         if reduced.is_empty() {
+            if let Some(th) = threshold {
+                self.margins.push(if left > 0.0 { th / left } else { f64::INFINITY });
+            }
             let combination = self
                 .options
                 .track_combinations
                 .then(|| comb_neg.into_iter().map(|(i, v)| (i, v.neg())).collect());
             return Insertion::Dependent { combination };
+        }
+        if let Some(t) = self.options.tolerance {
+            // Amplification: the row itself and Σ |c_j| s_j over the rows it was reduced with.
+            let amplification = scale
+                + comb_neg
+                    .iter()
+                    .map(|(i, v)| v.magnitude() * self.scales.get(*i).copied().unwrap_or(0.0))
+                    .sum::<f64>();
+            self.margins.push(left / (t * amplification.max(f64::MIN_POSITIVE)));
         }
 
         let candidates: Vec<&(usize, F)> = reduced.iter().collect();
@@ -536,6 +584,19 @@ impl<F> RowAnalysis<F> {
     pub fn dependent_rows(&self) -> Vec<usize> {
         (0..self.outcomes.len()).filter(|&i| !self.outcomes[i].is_independent()).collect()
     }
+}
+
+/// [`analyse_rows`], with the decision margin of every row ([`Echelon::margin`]; empty without
+/// a tolerance).
+pub fn analyse_rows_with_margins<F: Field>(
+    ncols: usize,
+    rows: impl IntoIterator<Item = SparseRow<F>>,
+    options: EchelonOptions,
+) -> (RowAnalysis<F>, Vec<f64>) {
+    let mut echelon = Echelon::new(ncols, options);
+    let outcomes: Vec<Insertion<F>> = rows.into_iter().map(|row| echelon.insert(row)).collect();
+    let margins = (0..outcomes.len()).filter_map(|i| echelon.margin(i)).collect();
+    (RowAnalysis { rank: echelon.rank(), outcomes }, margins)
 }
 
 /// Inserts `rows` in order into a fresh [`Echelon`] and collects the outcomes.

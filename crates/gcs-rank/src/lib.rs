@@ -106,7 +106,10 @@ mod rat;
 mod rug_field;
 mod sparse;
 
-pub use echelon::{Echelon, EchelonOptions, Insertion, RowAnalysis, analyse_rows};
+pub use echelon::{
+    AMBIGUITY_BAND, Echelon, EchelonOptions, Insertion, RowAnalysis, analyse_rows,
+    analyse_rows_with_margins,
+};
 pub use error::RankError;
 pub use exact::{
     CertifiedRows, KernelHint, Proof, SECOND_PRIME, THIRD_PRIME, analyse_rows_exact, certify_rows,

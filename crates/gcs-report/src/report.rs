@@ -198,6 +198,10 @@ pub struct Report {
     /// The drawing itself (absent when some entity has no sketch position).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sketch: Option<SketchReport>,
+    /// The float backend's constraints whose decision lies within the ambiguity band of its
+    /// tolerance (only with `--backend float`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uncertain: Option<Vec<String>>,
 }
 
 /// A constraint far from what its drawing shows (`sketch.largest_residual`).
@@ -323,6 +327,10 @@ impl Report {
             structural: s.map(|s| structural::report(system, s)),
             clusters_arithmetic: a.clusters_arithmetic.into(),
             sketch: a.sketch.as_ref().map(|sk| SketchReport::new(system, sk)),
+            uncertain: a
+                .uncertain
+                .as_ref()
+                .map(|u| u.iter().map(|c| system.constraint(*c).id.clone()).collect()),
         }
     }
 
@@ -430,6 +438,18 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
             a.seed
         ),
     );
+    if let (Some(u), Backend::Float { tolerance }) = (&a.uncertain, a.backend)
+        && !u.is_empty()
+    {
+        let ids: Vec<&str> = u.iter().map(|c| system.constraint(*c).id.as_str()).collect();
+        push(
+            &mut out,
+            format!(
+                "  uncertain at tolerance {tolerance:e}: {} — rerun with --backend exact",
+                ids.join(", ")
+            ),
+        );
+    }
     // Where the witness came from, when it is not the drawing itself, and why.
     match a.witness.source {
         WitnessSource::Sketch => {}
