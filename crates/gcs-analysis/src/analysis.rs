@@ -166,6 +166,9 @@ pub struct Analysis {
     pub proof: Option<Proof>,
     /// The witness.
     pub witness: Witness,
+    /// At a modular witness ([`WitnessSource::Modular`]): a heuristic bound on the probability
+    /// that its rank is not the generic rank ([`modular_error_bound`]); `None` otherwise.
+    pub witness_error_bound: Option<f64>,
     /// The seed of the witness search.
     pub seed: u64,
     /// Columns of the Jacobian.
@@ -232,7 +235,11 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
         return Err(AnalysisError::BackendUnavailable(options.backend.name()));
     }
     let layout = Layout::new(system);
-    let witness = find_witness(system, &layout, &options.witness)?;
+    // A modular witness only serves the prime-field analyses; the others fall back on the
+    // numerical projection (float) or refuse (rational: no exact witness).
+    let modular = matches!(options.backend, Backend::Exact | Backend::ModP);
+    let witness_options = WitnessOptions { modular, ..options.witness.clone() };
+    let witness = find_witness(system, &layout, &witness_options)?;
     if witness.source == WitnessSource::Approximate
         && !matches!(options.backend, Backend::Float { .. })
     {
@@ -240,7 +247,11 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
             sketch: witness.sketch_rejected.clone(),
             placement: None,
         });
-        return Err(AnalysisError::ApproximateWitness(why));
+        return Err(if modular {
+            AnalysisError::NoModularWitness(why)
+        } else {
+            AnalysisError::ApproximateWitness(why)
+        });
     }
     analyze_at(system, &layout, witness, options)
 }
@@ -538,6 +549,16 @@ pub(crate) fn redundancies(
     redundant
 }
 
+/// A bound on the probability that a random point of the constraints' solution set modulo the
+/// prime `p = 2^61 − 1` has a rank below the generic rank `r`: it must then lie on the
+/// hypersurface where the `r × r` minors vanish, a polynomial of degree at most `3r` in the
+/// coordinates (each Jacobian entry has degree at most 3), which a uniformly random point hits
+/// with probability at most `3r / p` (Schwartz–Zippel). Heuristic: the witness's coordinates
+/// are built from uniformly random choices, not drawn uniformly themselves.
+pub fn modular_error_bound(rank: usize) -> f64 {
+    3.0 * rank.max(1) as f64 / ModP::PRIME as f64
+}
+
 /// The constraints a float analysis is not sure of: those whose dependent/independent decision
 /// has a margin below [`AMBIGUITY_BAND`] ([`gcs_rank::Echelon::margin`]: a tolerance within that
 /// factor could have decided otherwise, or an independent remainder is small against what
@@ -598,7 +619,11 @@ pub fn analyze_at(
     witness: Witness,
     options: &AnalysisOptions,
 ) -> Result<Analysis, AnalysisError> {
-    let (outcome, equations, internal) = rank_at(system, layout, &witness, options.backend)?;
+    // At a modular witness everything is decided modulo the prime (the exact backend cannot
+    // certify over ℚ at a point that is not rational).
+    let modular = witness.source == WitnessSource::Modular;
+    let backend = if modular { Backend::ModP } else { options.backend };
+    let (outcome, equations, internal) = rank_at(system, layout, &witness, backend)?;
     let redundant = redundancies(system, layout, &witness, &outcome);
     let uncertain = match options.backend {
         Backend::Float { .. } => Some(uncertain(system, layout, &witness, &outcome)),
@@ -643,7 +668,7 @@ pub fn analyze_at(
             }
         })
     };
-    let clusters_arithmetic = match options.backend {
+    let clusters_arithmetic = match backend {
         _ if !options.clusters => Arithmetic::None,
         Backend::Float { tolerance } => Arithmetic::Float { tolerance },
         // Exact rationals (with a machine-word fast path) for the rational backends, and for
@@ -664,6 +689,7 @@ pub fn analyze_at(
     Ok(Analysis {
         backend: options.backend,
         proof: outcome.proof,
+        witness_error_bound: modular.then(|| modular_error_bound(outcome.rank)),
         seed: options.witness.seed,
         witness,
         unknowns,

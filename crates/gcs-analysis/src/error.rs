@@ -20,6 +20,13 @@ pub enum AnalysisError {
         "no exact witness ({0}); a numerical projection of the sketch found an approximate one, which only the float backend analyses"
     )]
     ApproximateWitness(gcs_jacobian::NoWitness),
+    /// The prime-field backends: no exact witness, and no modular one either (the square roots
+    /// its construction needs were non-residues modulo the prime in every attempt); only the
+    /// float backend's approximate witness exists.
+    #[error(
+        "no exact witness ({0}), nor a modular one (the square roots its construction needs had none modulo the prime in every attempt); a numerical projection of the sketch found an approximate one, which only the float backend analyses"
+    )]
+    NoModularWitness(gcs_jacobian::NoWitness),
     /// The backend was not compiled in.
     #[error("backend {0} is not available in this build (it needs the cargo feature \"{0}\")")]
     BackendUnavailable(&'static str),

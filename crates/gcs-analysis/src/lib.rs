@@ -33,6 +33,7 @@ mod sketch;
 
 pub use analysis::{
     Analysis, AnalysisOptions, Arithmetic, Backend, Redundancy, analyze, analyze_at,
+    modular_error_bound,
 };
 pub use error::AnalysisError;
 pub use gcs_decompose::{Cluster, ClusterMethod, DecompositionNode, RemovalOrder, Statistics};

@@ -90,9 +90,12 @@ pub struct SketchAnalysis {
     pub dependent: Vec<Redundancy>,
     /// The infinitesimal motions the drawing admits beyond the generic ones.
     pub extra_motions: usize,
-    /// Whether the drawing satisfies its constraints: every parameter-free constraint exactly,
-    /// every dimension to the precision its value is written with (half a unit of its last
-    /// decimal; an integer or a fraction to rounding).
+    /// Whether the drawing satisfies its constraints: every dimension to the precision its
+    /// value is written with (half a unit of its last decimal; an integer or a fraction to
+    /// rounding), every parameter-free constraint to the precision of the coordinates it reads
+    /// (exactly, or within the first-order reach Σ |∂row/∂x|·h of moving each coordinate by
+    /// h, half a unit of the last decimal its entity is written with: a point written
+    /// [1.5, 1.3229] is on the circle of radius 2 about the origin).
     pub satisfied: bool,
     /// The constraint the drawing is farthest from satisfying, when it does not satisfy them.
     pub largest_residual: Option<Residual>,
@@ -196,6 +199,18 @@ fn residuals(system: &System, layout: &Layout, x: &[BigRational]) -> (bool, Opti
     let xf: Vec<f64> = x.iter().map(|v| v.to_f64().unwrap_or(f64::NAN)).collect();
     let xr: Vec<Rat> = x.iter().map(Rat::from).collect();
     let equations = Equations::new(system, layout).with_branches_at(&xf);
+    // Each coordinate's precision is its entity's: the finest among the entity's decimal
+    // coordinates (a point written [1.5, 1.35] is written to two decimals, in x as in y; its
+    // integers do not count — [12.3456789, 0] is written to seven).
+    let mut h: Vec<f64> = x.iter().map(precision).collect();
+    for e in system.entity_indices() {
+        let columns = layout.columns(e);
+        let decimals = columns.clone().filter(|&c| !x[c].is_integer());
+        let Some(finest) = decimals.map(|c| h[c]).reduce(f64::min) else { continue };
+        for c in columns {
+            h[c] = finest;
+        }
+    }
     // (class: 1 for a parameter-free constraint, 0 for a dimension; score; residual)
     let mut worst: Option<(u8, f64, Residual)> = None;
     for c in system.constraint_indices() {
@@ -214,6 +229,16 @@ fn residuals(system: &System, layout: &Layout, x: &[BigRational]) -> (bool, Opti
                 continue;
             }
             let r = equations.rows::<f64>(c, &xf);
+            // Within the precision of the coordinates it reads: moving each by at most half a
+            // unit of its last written decimal moves the row, to first order, by at most
+            // Σ |∂row/∂x|·h — the drawing satisfies the row if its value is within that.
+            let within = r.values.iter().zip(&r.rows).all(|(v, g)| {
+                let reach: f64 = g.entries().iter().map(|&(col, a)| a.abs() * h[col]).sum();
+                v.abs() <= reach
+            });
+            if within {
+                continue;
+            }
             let distance = r
                 .values
                 .iter()

@@ -1,7 +1,9 @@
-//! When no rational witness can be constructed, a numerical projection gives an approximate
-//! one: the exact backends refuse it with a clear message (a rank decided exactly at an
-//! approximate point would be a silent wrong answer), the float backend analyses there and the
-//! report says the witness is approximate.
+//! When no rational witness can be constructed (the witness paper's tangencies and
+//! intersections of circles that need a square root): the prime-field backends (exact, modp)
+//! build a modular witness and analyse there, saying so (issue 10.4: they never refuse what
+//! float analyses); the float backend analyses at a numerical projection and says the witness
+//! is approximate; the rational backends refuse with a clear message (a rank decided exactly at
+//! an approximate point would be a silent wrong answer).
 
 use gcs_analysis::{AnalysisError, AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessSource;
@@ -15,18 +17,16 @@ const TWO_CIRCLES: &str = r#"System(dim: 2,
                 Incident(id: "i1", a: "p", b: "k1"), Incident(id: "i2", a: "p", b: "k2")])"#;
 
 #[test]
-fn exact_backends_refuse_an_approximate_witness() {
+fn rational_backends_refuse_an_approximate_witness() {
     let s = System::from_ron_str(TWO_CIRCLES, Some("two_circles.ron")).unwrap();
-    for backend in [Backend::Exact, Backend::Rational, Backend::ModP] {
-        let err =
-            analyze(&s, &AnalysisOptions { backend, ..AnalysisOptions::default() }).unwrap_err();
-        assert!(matches!(err, AnalysisError::ApproximateWitness(_)), "{backend:?}: {err}");
-        let msg = err.to_string();
-        assert!(msg.contains("entity \"p\" cannot be placed rationally"), "{msg}");
-        assert!(msg.contains("only the float backend"), "{msg}");
-        // A library message names no command-line flag: that is the CLI's to add.
-        assert!(!msg.contains("--"), "{msg}");
-    }
+    let backend = Backend::Rational;
+    let err = analyze(&s, &AnalysisOptions { backend, ..AnalysisOptions::default() }).unwrap_err();
+    assert!(matches!(err, AnalysisError::ApproximateWitness(_)), "{err}");
+    let msg = err.to_string();
+    assert!(msg.contains("entity \"p\" cannot be placed rationally"), "{msg}");
+    assert!(msg.contains("only the float backend"), "{msg}");
+    // A library message names no command-line flag: that is the CLI's to add.
+    assert!(!msg.contains("--"), "{msg}");
 }
 
 #[test]
@@ -48,4 +48,61 @@ fn float_analyses_at_the_projection_and_says_so() {
     let at: Vec<f64> = layout.columns(p).map(|c| coords[c]).collect();
     approx::assert_abs_diff_eq!(at[0], 1.5, epsilon = 1e-9);
     approx::assert_abs_diff_eq!(at[1].abs(), 1.75f64.sqrt(), epsilon = 1e-9);
+}
+
+/// A point on two fixed circles, and a circle tangent to the three fixed sides of a triangle
+/// (its incircle, irrational): the exact and modular backends analyse at a modular witness,
+/// with the same verdict as float at its projection, and say how sure they are.
+#[test]
+fn prime_field_backends_build_a_modular_witness() {
+    const INCIRCLE: &str = r#"System(dim: 2,
+      entities: [Line(id: "a", at: [[0, 0], [10, 0]]), Line(id: "b", at: [[0, 0], [3, 7]]),
+                 Line(id: "c", at: [[10, 0], [3, 7]]), Circle(id: "k", center: [4.1, 2.3], radius: 2.2)],
+      constraints: [Fix(id: "fa", a: "a"), Fix(id: "fb", a: "b"), Fix(id: "fc", a: "c"),
+                    Tangent(id: "ta", a: "a", b: "k"), Tangent(id: "tb", a: "b", b: "k"),
+                    Tangent(id: "tc", a: "c", b: "k")])"#;
+    // The point is written to four decimals, on both circles to that precision; the circle
+    // is drawn well off the incircle (radius 2.2 against 35/13.76 ≈ 2.54).
+    for (text, drawn_on) in [(TWO_CIRCLES, true), (INCIRCLE, false)] {
+        let s = System::from_ron_str(text, None).unwrap();
+        let float = analyze(
+            &s,
+            &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+        )
+        .unwrap();
+        assert_eq!(float.witness.source, WitnessSource::Approximate);
+        for backend in [Backend::Exact, Backend::ModP] {
+            let decompose = AnalysisOptions { backend, decompose: true, ..Default::default() };
+            let a = analyze(&s, &decompose).unwrap_or_else(|e| panic!("{backend:?}: {e}"));
+            assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
+            assert!(a.well_constrained());
+            assert_eq!((a.rank, a.trivial_motions, a.dof), (float.rank, 0, 0));
+            assert_eq!(a.proof, None, "nothing is proven at a modular witness");
+            let bound = a.witness_error_bound.expect("a modular witness says how sure it is");
+            assert!(bound > 0.0 && bound < 1e-15, "{bound}");
+            assert_eq!(a.clusters.len(), 1);
+            assert!(a.decomposition.is_some());
+            // The drawing itself is still judged, exactly or to its written precision.
+            let sketch = a.sketch.as_ref().unwrap();
+            assert_eq!(sketch.satisfied, drawn_on, "{backend:?}");
+            assert_eq!(sketch.largest_residual.is_some(), !drawn_on, "{backend:?}");
+        }
+    }
+}
+
+/// The drawing satisfies an incidence to the precision its coordinates are written with, and
+/// no further: (1.5, 1.3229) is on both circles, (1.5, 1.35) is not (its distance to k1,
+/// 0.018, is beyond what moving each coordinate by 0.005 can reach).
+#[test]
+fn incidence_is_judged_to_the_written_precision() {
+    for (at, satisfied) in [("[1.5, 1.3229]", true), ("[1.5, 1.35]", false), ("[1.5, 1.3]", true)] {
+        let text = TWO_CIRCLES.replace("[1.5, 1.3229]", at);
+        let s = System::from_ron_str(&text, None).unwrap();
+        let a = analyze(&s, &AnalysisOptions::default()).unwrap();
+        let sketch = a.sketch.as_ref().unwrap();
+        assert_eq!(sketch.satisfied, satisfied, "{at}");
+        if let Some(r) = &sketch.largest_residual {
+            assert_eq!(s.constraint(r.constraint).id, "i1", "{at}");
+        }
+    }
 }

@@ -20,7 +20,7 @@ fn independent(dim: u8, entities: &str, constraints: &str) {
         for seed in [1, 2] {
             let options = AnalysisOptions {
                 backend,
-                witness: WitnessOptions { seed, rounds: 1 },
+                witness: WitnessOptions { seed, rounds: 1, ..WitnessOptions::default() },
                 clusters: false,
                 ..AnalysisOptions::default()
             };

@@ -27,7 +27,8 @@ pub(crate) struct Settings {
 /// What to tell a user whose exact analysis found only an approximate witness.
 fn hint(e: &gcs_analysis::AnalysisError) -> &'static str {
     match e {
-        gcs_analysis::AnalysisError::ApproximateWitness(_) => {
+        gcs_analysis::AnalysisError::ApproximateWitness(_)
+        | gcs_analysis::AnalysisError::NoModularWitness(_) => {
             ": rerun with --backend float to analyse it there"
         }
         _ => "",

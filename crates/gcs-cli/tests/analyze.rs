@@ -199,7 +199,18 @@ fn an_approximate_witness_is_refused_with_a_hint() {
     )
     .unwrap();
     let path = file.to_str().unwrap();
-    let (code, _, stderr) = gcs(&["analyze", path]);
+    // The default (exact) backend builds the witness modulo a prime, where
+    // the square root exists, and says the answer is probabilistic.
+    let (code, stdout, _) = gcs(&["analyze", "--format", "json", path]);
+    assert_eq!(code, 0);
+    let v = &json_lines(&stdout)[0];
+    assert_eq!(v["witness"], "modular", "{v}");
+    assert_eq!(v["rank"], 8, "{v}");
+    assert_eq!(v["sketch"]["satisfied"], true, "{v}");
+    assert_eq!(v["dof"], 0, "{v}");
+    assert!(v["witness_error_bound"].as_f64().is_some_and(|b| b > 0.0 && b < 1e-6), "{v}");
+    // The rational backend wants a rational witness and refuses with a hint.
+    let (code, _, stderr) = gcs(&["analyze", "--backend", "rational", path]);
     assert_eq!(code, 1);
     assert!(stderr.contains("entity \"p\" cannot be placed rationally"), "{stderr}");
     assert!(

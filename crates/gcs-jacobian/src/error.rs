@@ -87,6 +87,14 @@ pub enum JacobianError {
     /// No witness could be built, exact or approximate.
     #[error("no witness: {0}")]
     NoWitness(NoWitness),
+    /// A modular witness was asked for in a field other than the prime field it lives in.
+    #[error(
+        "the witness is modular (coordinates modulo 2^61 − 1): it cannot be evaluated in the {field} field"
+    )]
+    ModularWitness {
+        /// The field asked for.
+        field: &'static str,
+    },
     /// An entity's homogeneous coordinates have zero norm in the field (impossible over ℚ,
     /// negligibly likely modulo a large prime).
     #[error("not a witness: the homogeneous coordinates of entity \"{entity}\" have zero norm")]

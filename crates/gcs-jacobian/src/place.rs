@@ -31,7 +31,7 @@ use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
 use crate::dual::Dual;
 use crate::laws;
 use crate::layout::Layout;
-use crate::qla::{self, Affine, Q};
+use crate::qla::{self, Affine, Num, Q};
 use crate::repr::{Draw, Snap};
 use crate::views::Local;
 
@@ -42,6 +42,11 @@ pub(crate) struct PlaceOptions {
     pub(crate) seed: u64,
     /// Amplitude of the random moves, relative to the model's scale.
     pub(crate) noise: f64,
+    /// Place over the integers modulo 2^61 − 1 instead of ℚ ([`crate::qla::Num`]): square
+    /// roots exist for half the residues, so tangencies, mirrors and intersections of circles
+    /// that need an irrational coordinate over ℚ are placed; the sides (tangency branches) are
+    /// still the preference's, the rest is random.
+    pub(crate) modular: bool,
 }
 
 /// Why a placement failed: the entity that could not be placed and the constraints binding it
@@ -68,6 +73,8 @@ struct Placer<'a> {
     rng: SplitMix64,
     scale: f64,
     noise: f64,
+    /// Whether the placement runs modulo the prime.
+    modular: bool,
     /// The entity being placed.
     current: Option<EntityIdx>,
     /// For each point, the other endpoints of the segments it is an endpoint of.
@@ -124,7 +131,13 @@ pub(crate) fn place(
     let mut bases = Vec::with_capacity(system.constraints().len());
     for ci in system.constraint_indices() {
         let b = system.constraint_base_entities(ci);
-        if is_exact_kind(system.constraint(ci).kind) {
+        let kind = system.constraint(ci).kind;
+        // Modulo the prime, a fixed position is a parameter like a dimension (its rows do not
+        // depend on it), read off the witness: with it free, a construction the fixes determine
+        // completely (a point on two fixed circles) still has random choices, and so a square
+        // root for half of them.
+        let parameter = options.modular && kind == ConstraintKind::Fix;
+        if is_exact_kind(kind) && !parameter {
             for e in &b {
                 adjacent[e.index()].push(ci);
             }
@@ -157,10 +170,18 @@ pub(crate) fn place(
             rng: SplitMix64::new(options.seed.wrapping_add(attempt as u64)),
             scale,
             noise: options.noise,
+            modular: false,
             current: None,
             partners: partners.clone(),
         };
         p.choose_variants();
+        if options.modular {
+            // The branches were chosen at the rational preference; the rest runs modulo p.
+            for x in p.coords.iter_mut().chain(p.pref.iter_mut()) {
+                *x = Num::P(x.modular());
+            }
+            p.modular = true;
+        }
         match p.run(&tiebreak) {
             Ok(()) => return Ok(p.coords),
             Err(f) => failure = Some(f),
@@ -293,7 +314,13 @@ impl Placer<'_> {
         parallel_to(&u, n, Some(other))
     }
 
+    /// A small random move (over ℚ, near the preference); modulo the prime a uniform residue:
+    /// there is no "near", and uniform choices are what makes a random point generic with
+    /// overwhelming probability.
     fn random_small(&mut self) -> Q {
+        if self.modular {
+            return Num::P(gcs_rank::ModP::new(self.rng.next_u64()));
+        }
         qla::approx(self.noise * self.scale * (2.0 * self.rng.unit_f64() - 1.0), 1_000_000)
     }
 

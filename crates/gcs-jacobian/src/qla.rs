@@ -1,10 +1,273 @@
-//! Small dense exact linear algebra over ℚ for the constructive placement of one entity
-//! (a handful of unknowns), and rational approximations.
+//! Small dense exact linear algebra for the constructive placement of one entity (a handful of
+//! unknowns), over ℚ or over the integers modulo 2^61 − 1, and rational approximations.
 
-use gcs_rank::Rat;
+use std::iter::Sum;
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-/// The exact rational of the placement: small values stay in machine words.
-pub(crate) type Q = Rat;
+use gcs_rank::{BigRational, Field, ModP, RankError, Rat};
+
+/// The exact number of the placement: a rational (small values stay in machine words), or an
+/// integer modulo 2^61 − 1 when the placement runs over that field (a *modular* witness: square
+/// roots exist for half the residues, where a rational placement needs a perfect square).
+///
+/// A placement is in one field; constants written as rationals (`2`, `1/7`, approximations of
+/// a direction) join a modular computation as their images modulo the prime.
+pub(crate) type Q = Num;
+
+/// A rational or a residue modulo [`ModP::PRIME`] (see [`Q`]).
+#[derive(Clone, Debug)]
+pub(crate) enum Num {
+    /// An exact rational.
+    R(Rat),
+    /// A residue modulo 2^61 − 1.
+    P(ModP),
+}
+
+/// The image of a rational modulo the prime (a denominator the prime divides maps to 0: no
+/// constant of the placement has one).
+fn residue(r: &Rat) -> ModP {
+    ModP::from_rat(r).unwrap_or_default()
+}
+
+impl Num {
+    pub(crate) const ZERO: Num = Num::R(Rat::ZERO);
+    pub(crate) const ONE: Num = Num::R(Rat::ONE);
+
+    /// `num/den`, `None` for a zero denominator.
+    pub(crate) fn new(num: i64, den: i64) -> Option<Num> {
+        Rat::new(num, den).map(Num::R)
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        match self {
+            Num::R(r) => r.is_zero(),
+            Num::P(p) => Field::is_zero(p),
+        }
+    }
+
+    /// The value, for the placement's heuristics (which side, which is nearer): a residue has
+    /// no size, and gives a pseudo-random value in `[−1, 1)`, which makes those choices random.
+    pub(crate) fn to_f64(&self) -> f64 {
+        match self {
+            Num::R(r) => r.to_f64(),
+            Num::P(p) => 2.0 * (p.value() as f64 / ModP::PRIME as f64) - 1.0,
+        }
+    }
+
+    /// The exact square root when it exists: of a perfect square over ℚ; modulo the prime
+    /// (`p ≡ 3 mod 4`: `a^((p+1)/4)`) for half the residues.
+    pub(crate) fn sqrt_exact(&self) -> Option<Num> {
+        match self {
+            Num::R(r) => r.sqrt_exact().map(Num::R),
+            Num::P(a) => {
+                let mut e = (ModP::PRIME + 1) / 4;
+                let (mut base, mut root) = (*a, ModP::new(1));
+                while e > 0 {
+                    if e & 1 == 1 {
+                        root = Field::mul(&root, &base);
+                    }
+                    base = Field::mul(&base, &base);
+                    e >>= 1;
+                }
+                (Field::mul(&root, &root) == *a).then_some(Num::P(root))
+            }
+        }
+    }
+
+    /// The value over ℚ (`None` for a residue).
+    pub(crate) fn rational(&self) -> Option<&Rat> {
+        match self {
+            Num::R(r) => Some(r),
+            Num::P(_) => None,
+        }
+    }
+
+    /// The residue (a rational is mapped to its image).
+    pub(crate) fn modular(&self) -> ModP {
+        match self {
+            Num::R(r) => residue(r),
+            Num::P(p) => *p,
+        }
+    }
+
+    fn binary(
+        a: &Num,
+        b: &Num,
+        r: impl Fn(&Rat, &Rat) -> Rat,
+        p: impl Fn(&ModP, &ModP) -> ModP,
+    ) -> Num {
+        match (a, b) {
+            (Num::R(x), Num::R(y)) => Num::R(r(x, y)),
+            (Num::P(x), Num::P(y)) => Num::P(p(x, y)),
+            (Num::R(x), Num::P(y)) => Num::P(p(&residue(x), y)),
+            (Num::P(x), Num::R(y)) => Num::P(p(x, &residue(y))),
+        }
+    }
+}
+
+impl PartialEq for Num {
+    fn eq(&self, other: &Num) -> bool {
+        match (self, other) {
+            (Num::R(x), Num::R(y)) => x == y,
+            _ => self.modular() == other.modular(),
+        }
+    }
+}
+
+impl From<i64> for Num {
+    fn from(v: i64) -> Num {
+        Num::R(Rat::from(v))
+    }
+}
+
+macro_rules! num_op {
+    ($Op:ident, $op:ident, $r:expr, $p:expr) => {
+        impl $Op<&Num> for &Num {
+            type Output = Num;
+            fn $op(self, rhs: &Num) -> Num {
+                Num::binary(self, rhs, $r, $p)
+            }
+        }
+        impl $Op<Num> for &Num {
+            type Output = Num;
+            fn $op(self, rhs: Num) -> Num {
+                Num::binary(self, &rhs, $r, $p)
+            }
+        }
+        impl $Op<&Num> for Num {
+            type Output = Num;
+            fn $op(self, rhs: &Num) -> Num {
+                Num::binary(&self, rhs, $r, $p)
+            }
+        }
+        impl $Op<Num> for Num {
+            type Output = Num;
+            fn $op(self, rhs: Num) -> Num {
+                Num::binary(&self, &rhs, $r, $p)
+            }
+        }
+    };
+}
+
+macro_rules! num_assign {
+    ($OpAssign:ident, $op_assign:ident, $op:tt) => {
+        impl $OpAssign<&Num> for Num {
+            fn $op_assign(&mut self, rhs: &Num) {
+                *self = &*self $op rhs;
+            }
+        }
+        impl $OpAssign<Num> for Num {
+            fn $op_assign(&mut self, rhs: Num) {
+                *self = &*self $op &rhs;
+            }
+        }
+    };
+}
+
+/// The quotient modulo the prime (0 for a zero divisor, which the placement never divides by
+/// where it matters: it checks every result exactly).
+fn div_mod(x: &ModP, y: &ModP) -> ModP {
+    y.inv().map_or(ModP::default(), |i| Field::mul(x, &i))
+}
+
+num_op!(Add, add, |x, y| x + y, Field::add);
+num_op!(Sub, sub, |x, y| x - y, Field::sub);
+num_op!(Mul, mul, |x, y| x * y, Field::mul);
+num_op!(Div, div, |x, y| x / y, div_mod);
+num_assign!(AddAssign, add_assign, +);
+num_assign!(SubAssign, sub_assign, -);
+
+impl Neg for Num {
+    type Output = Num;
+    fn neg(self) -> Num {
+        match self {
+            Num::R(r) => Num::R(-r),
+            Num::P(p) => Num::P(Field::neg(&p)),
+        }
+    }
+}
+
+impl Neg for &Num {
+    type Output = Num;
+    fn neg(self) -> Num {
+        -(self.clone())
+    }
+}
+
+impl Sum for Num {
+    fn sum<I: Iterator<Item = Num>>(iter: I) -> Num {
+        iter.fold(Num::ZERO, |a, b| a + b)
+    }
+}
+
+impl<'a> Sum<&'a Num> for Num {
+    fn sum<I: Iterator<Item = &'a Num>>(iter: I) -> Num {
+        iter.fold(Num::ZERO, |a, b| a + b)
+    }
+}
+
+impl Field for Num {
+    const NAME: &'static str = "placement";
+    const EXACT: bool = true;
+
+    fn zero() -> Self {
+        Num::ZERO
+    }
+
+    fn one() -> Self {
+        Num::ONE
+    }
+
+    fn is_zero(&self) -> bool {
+        Num::is_zero(self)
+    }
+
+    fn from_i64(v: i64) -> Self {
+        Num::from(v)
+    }
+
+    fn from_rational(q: &BigRational) -> Result<Self, RankError> {
+        Ok(Num::R(Rat::from(q)))
+    }
+
+    fn from_rat(q: &Rat) -> Result<Self, RankError> {
+        Ok(Num::R(q.clone()))
+    }
+
+    fn add(&self, rhs: &Self) -> Self {
+        self + rhs
+    }
+
+    fn sub(&self, rhs: &Self) -> Self {
+        self - rhs
+    }
+
+    fn mul(&self, rhs: &Self) -> Self {
+        self * rhs
+    }
+
+    fn neg(&self) -> Self {
+        -self
+    }
+
+    fn inv(&self) -> Option<Self> {
+        match self {
+            Num::R(r) => Field::inv(r).map(Num::R),
+            Num::P(p) => p.inv().map(Num::P),
+        }
+    }
+
+    fn sub_mul_assign(&mut self, a: &Self, b: &Self) {
+        *self = &*self - &(a * b);
+    }
+
+    fn magnitude(&self) -> f64 {
+        match self {
+            Num::R(r) => r.magnitude(),
+            Num::P(p) => p.magnitude(),
+        }
+    }
+}
 
 /// The solution set `{x0 + N t}` of a linear system.
 #[derive(Clone, Debug)]
@@ -108,7 +371,7 @@ pub(crate) fn sqrt(q: &Q) -> Option<Q> {
 
 /// The rational `round(x · den) / den` (0 for a non-finite `x`).
 pub(crate) fn approx(x: f64, den: i64) -> Q {
-    Q::from_f64_approx(x, den.max(1))
+    Num::R(Rat::from_f64_approx(x, den.max(1)))
 }
 
 pub(crate) fn to_f64(q: &Q) -> f64 {

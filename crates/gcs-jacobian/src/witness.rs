@@ -35,6 +35,13 @@ pub enum WitnessSource {
     /// Constructed (the sketch was missing or did not satisfy the parameter-free
     /// constraints).
     Generated,
+    /// No rational witness could be constructed (a tangency, a mirror or an intersection of
+    /// circles needs a square root there); constructed over the integers modulo 2^61 − 1,
+    /// where square roots exist for half the residues. Its coordinates are residues: only the
+    /// prime field analyses at it, exactly with overwhelming probability (a random point of
+    /// the solution set has the generic rank unless it falls on the hypersurface where the
+    /// minors of that rank vanish).
+    Modular,
     /// No rational witness could be constructed; a numerical projection of the sketch onto
     /// the constraints, exact only up to rounding. Only the float backend is honest at it.
     Approximate,
@@ -47,6 +54,7 @@ impl WitnessSource {
             WitnessSource::Sketch => "sketch",
             WitnessSource::Perturbed => "perturbed",
             WitnessSource::Generated => "generated",
+            WitnessSource::Modular => "modular",
             WitnessSource::Approximate => "approximate",
         }
     }
@@ -60,11 +68,15 @@ pub struct WitnessOptions {
     /// Number of perturbations in the genericity test, and of placements tried when
     /// generating.
     pub rounds: usize,
+    /// Whether a modular witness ([`WitnessSource::Modular`]) may be built when no rational
+    /// one can: for analyses in a prime field. Off, the last resort is the numerical
+    /// projection (for `f64`).
+    pub modular: bool,
 }
 
 impl Default for WitnessOptions {
     fn default() -> Self {
-        WitnessOptions { seed: 1, rounds: 1 }
+        WitnessOptions { seed: 1, rounds: 1, modular: true }
     }
 }
 
@@ -94,8 +106,14 @@ impl Witness {
     /// The coordinates mapped into a field.
     ///
     /// # Errors
-    /// When a coordinate has no image in `F` (a denominator divisible by the prime).
+    /// When a coordinate has no image in `F` (a denominator divisible by the prime), and for a
+    /// modular witness in any field but [`ModP`] ([`JacobianError::ModularWitness`]).
     pub fn coords_in<F: Field>(&self) -> Result<Vec<F>, JacobianError> {
+        if self.source == WitnessSource::Modular
+            && std::any::TypeId::of::<F>() != std::any::TypeId::of::<ModP>()
+        {
+            return Err(JacobianError::ModularWitness { field: F::NAME });
+        }
         Ok(self.coords.iter().map(F::from_rational).collect::<Result<Vec<F>, _>>()?)
     }
 
@@ -109,6 +127,11 @@ impl Witness {
         layout: &Layout,
     ) -> Result<Jacobian<F>, JacobianError> {
         let x: Vec<F> = self.coords_in()?;
+        if self.source == WitnessSource::Modular {
+            // Fixed positions are parameters read off a modular witness.
+            let own = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
+            return Ok(assemble(system, layout, &self.plan, &x, &own));
+        }
         let sketch = |e: EntityIdx| -> Option<Vec<F>> {
             sketch_coords(system, e)?.iter().map(|q| F::from_rational(q).ok()).collect()
         };
@@ -138,6 +161,49 @@ fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan) -> u
     gcs_rank::echelon_rank(j.ncols, j.rows).0
 }
 
+/// The placement's rationals (a rational placement holds only rationals).
+fn rationals(v: &[crate::qla::Q]) -> Vec<Rat> {
+    v.iter().map(|x| x.rational().cloned().unwrap_or(Rat::ZERO)).collect()
+}
+
+/// A modular witness: the placement run modulo the prime, the best rank of a few rounds.
+fn modular(
+    system: &System,
+    layout: &Layout,
+    pref: &[crate::qla::Q],
+    scale: f64,
+    options: &WitnessOptions,
+    sketch_rejected: &Option<Rejection>,
+    why: &NoWitness,
+) -> Result<Option<Witness>, JacobianError> {
+    let mut best: Option<(Vec<ModP>, Plan, usize)> = None;
+    for round in 0..options.rounds.max(1) + 1 {
+        let opts = PlaceOptions {
+            seed: options.seed.wrapping_mul(0x51ED_270B).wrapping_add(round as u64 + 1),
+            noise: 1e-3,
+            modular: true,
+        };
+        let Ok(coords) = place::place(system, layout, pref, scale, &opts) else { continue };
+        let x: Vec<ModP> = coords.iter().map(crate::qla::Num::modular).collect();
+        // Fixed positions are read off the witness (see `place`).
+        let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
+        let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
+        let j = assemble(system, layout, &p, &x, &sketch);
+        let r = gcs_rank::echelon_rank(j.ncols, j.rows).0;
+        if best.as_ref().is_none_or(|b| r > b.2) {
+            best = Some((x, p, r));
+        }
+    }
+    Ok(best.map(|(x, plan, _)| Witness {
+        coords: x.iter().map(|v| BigRational::from_integer(v.value().into())).collect(),
+        source: WitnessSource::Modular,
+        plan,
+        genericity_tested: true,
+        sketch_rejected: sketch_rejected.clone(),
+        no_exact_witness: Some(why.clone()),
+    }))
+}
+
 /// Finds a witness of `system` (see the module documentation).
 ///
 /// # Errors
@@ -151,7 +217,8 @@ pub fn find_witness(
     options: &WitnessOptions,
 ) -> Result<Witness, JacobianError> {
     let mut rng = SplitMix64::new(options.seed);
-    let (pref, scale) = place::preferences(system, layout, &mut rng);
+    let (pref_q, scale) = place::preferences(system, layout, &mut rng);
+    let pref: Vec<Rat> = rationals(&pref_q);
     let sketch = sketch_fn(system);
     let has_sketch = system
         .entity_indices()
@@ -176,19 +243,20 @@ pub fn find_witness(
         let opts = PlaceOptions {
             seed: options.seed.wrapping_mul(0x9E37_79B9).wrapping_add(round as u64 + 1),
             noise: 1e-3,
+            modular: false,
         };
-        match place::place(system, layout, &pref, scale, &opts) {
-            Ok(coords) => match plan(system, layout, &coords, &sketch)? {
+        match place::place(system, layout, &pref_q, scale, &opts) {
+            Ok(coords) => match plan(system, layout, &rationals(&coords), &sketch)? {
                 Ok(p) => {
                     tested = true;
-                    let r = rank_modp(system, layout, &coords, &p);
+                    let r = rank_modp(system, layout, &rationals(&coords), &p);
                     let source = if has_sketch && sketch_rejected.is_none() {
                         WitnessSource::Perturbed
                     } else {
                         WitnessSource::Generated
                     };
                     if best.as_ref().is_none_or(|b| r > b.2) {
-                        best = Some((coords, p, r, source));
+                        best = Some((rationals(&coords), p, r, source));
                     }
                 }
                 Err(u) => failure = Some(describe(system, &u)),
@@ -216,6 +284,12 @@ pub fn find_witness(
         }),
         None => {
             let msg = NoWitness { sketch: sketch_rejected.clone(), placement: failure };
+            if options.modular
+                && let Some(w) =
+                    modular(system, layout, &pref_q, scale, options, &sketch_rejected, &msg)?
+            {
+                return Ok(w);
+            }
             // Last resort: project the sketch numerically onto the constraints.
             let start: Vec<f64> = pref.iter().map(Rat::to_f64).collect();
             let Some(x) = crate::project::project(system, layout, &start, scale) else {

@@ -53,6 +53,8 @@ pub enum WitnessName {
     Perturbed,
     /// Constructed from the seed.
     Generated,
+    /// Constructed modulo the prime (no rational witness exists near the drawing).
+    Modular,
     /// A numerical projection (float only).
     Approximate,
 }
@@ -63,6 +65,7 @@ impl From<WitnessSource> for WitnessName {
             WitnessSource::Sketch => WitnessName::Sketch,
             WitnessSource::Perturbed => WitnessName::Perturbed,
             WitnessSource::Generated => WitnessName::Generated,
+            WitnessSource::Modular => WitnessName::Modular,
             WitnessSource::Approximate => WitnessName::Approximate,
         }
     }
@@ -198,6 +201,10 @@ pub struct Report {
     /// The drawing itself (absent when some entity has no sketch position).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sketch: Option<SketchReport>,
+    /// At a modular witness: the (heuristic) probability bound of a rank below the generic
+    /// one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub witness_error_bound: Option<f64>,
     /// The float backend's constraints whose decision lies within the ambiguity band of its
     /// tolerance (only with `--backend float`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -327,6 +334,7 @@ impl Report {
             structural: s.map(|s| structural::report(system, s)),
             clusters_arithmetic: a.clusters_arithmetic.into(),
             sketch: a.sketch.as_ref().map(|sk| SketchReport::new(system, sk)),
+            witness_error_bound: a.witness_error_bound,
             uncertain: a
                 .uncertain
                 .as_ref()
@@ -420,9 +428,14 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
             push(&mut out, line);
         }
     }
-    let proof = match &a.proof {
-        Some(p) => format!(" ({p})"),
-        None => String::new(),
+    let proof = match (&a.proof, a.witness_error_bound) {
+        (Some(p), _) => format!(" ({p})"),
+        (None, Some(bound)) => format!(
+            " (modulo {} at a modular witness: not proven, wrong with probability below about \
+             {bound:.0e})",
+            gcs_rank::ModP::PRIME
+        ),
+        (None, None) => String::new(),
     };
     let tol = match a.backend {
         Backend::Float { tolerance } => format!(", tolerance {tolerance:e}"),
@@ -471,9 +484,9 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
                 a.witness.sketch_rejected.as_ref().map_or_else(String::new, |w| w.to_string());
             push(&mut out, format!("  note: sketch not used as witness: {why}"));
         }
-        WitnessSource::Approximate => {
+        WitnessSource::Modular | WitnessSource::Approximate => {
             if let Some(why) = &a.witness.no_exact_witness {
-                push(&mut out, format!("  note: sketch not used as witness: {why}"));
+                push(&mut out, format!("  note: no rational witness: {why}"));
             }
         }
     }

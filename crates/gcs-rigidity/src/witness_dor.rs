@@ -29,9 +29,9 @@
 //! are projected tangent to each entity's normalisation, so a displacement that maps a line to
 //! itself has velocity zero on its coordinates, as it must.
 
-use gcs_jacobian::{Layout, Witness, WitnessOptions, find_witness, motions};
+use gcs_jacobian::{Layout, Witness, WitnessOptions, WitnessSource, find_witness, motions};
 use gcs_model::{EntityIdx, System};
-use gcs_rank::{BigRational, Echelon, EchelonOptions, SparseRow};
+use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, ModP, SparseRow};
 
 use crate::dor::DorOracle;
 use crate::error::RigidityError;
@@ -65,9 +65,80 @@ use crate::error::RigidityError;
 #[derive(Clone, Debug)]
 pub struct WitnessDor {
     displacements: usize,
-    /// Per entity: an echelon basis of the span, in `ℚ^D`, of the columns of `T` on its
-    /// unknowns (empty for segments).
-    spans: Vec<Vec<SparseRow<BigRational>>>,
+    /// Per entity: an echelon basis of the span, in `F^D`, of the columns of `T` on its
+    /// unknowns (empty for segments); over ℚ, or modulo the prime at a modular witness.
+    spans: Spans,
+}
+
+#[derive(Clone, Debug)]
+enum Spans {
+    Rational(Vec<Vec<SparseRow<BigRational>>>),
+    Modular(Vec<Vec<SparseRow<ModP>>>),
+}
+
+impl Spans {
+    fn len(&self) -> usize {
+        match self {
+            Spans::Rational(s) => s.len(),
+            Spans::Modular(s) => s.len(),
+        }
+    }
+
+    fn entity(&self, e: usize) -> usize {
+        match self {
+            Spans::Rational(s) => s.get(e).map_or(0, Vec::len),
+            Spans::Modular(s) => s.get(e).map_or(0, Vec::len),
+        }
+    }
+
+    /// The rank of the union of the spans of `entities`.
+    fn rank(&self, entities: &[EntityIdx], d: usize) -> usize {
+        fn union<F: Field>(spans: &[Vec<SparseRow<F>>], entities: &[EntityIdx], d: usize) -> usize {
+            let mut echelon = Echelon::new(d, EchelonOptions::default());
+            for e in entities {
+                for row in &spans[e.index()] {
+                    if echelon.rank() == d {
+                        return d;
+                    }
+                    echelon.insert(row.clone());
+                }
+            }
+            echelon.rank()
+        }
+        match self {
+            Spans::Rational(s) => union(s, entities, d),
+            Spans::Modular(s) => union(s, entities, d),
+        }
+    }
+}
+
+/// Per entity, the echelon basis of [`spans_in`].
+type EntitySpans<F> = Vec<Vec<SparseRow<F>>>;
+
+/// Per entity, an echelon basis of the span of the generators' columns on its unknowns.
+fn spans_in<F: Field>(
+    system: &System,
+    layout: &Layout,
+    coords: &[F],
+) -> Result<(usize, EntitySpans<F>), RigidityError> {
+    let t = motions::generators::<F>(system, layout, coords)
+        .map_err(|e| RigidityError::Witness(e.to_string()))?;
+    let d = t.len();
+    let spans = system
+        .entity_indices()
+        .map(|e| {
+            let mut echelon = Echelon::new(d, EchelonOptions::default());
+            for col in layout.columns(e) {
+                if echelon.rank() == d {
+                    break;
+                }
+                let v: Vec<(usize, F)> = (0..d).map(|g| (g, t[g][col].clone())).collect();
+                echelon.insert(SparseRow::from_entries(v));
+            }
+            echelon.rref().into_iter().map(|(_, row)| row).collect()
+        })
+        .collect();
+    Ok((d, spans))
 }
 
 impl WitnessDor {
@@ -95,25 +166,8 @@ impl WitnessDor {
                 layout.ncols()
             )));
         }
-        let t = motions::generators::<BigRational>(system, layout, coords)
-            .map_err(|e| RigidityError::Witness(e.to_string()))?;
-        let d = t.len();
-        let spans = system
-            .entity_indices()
-            .map(|e| {
-                let mut echelon = Echelon::new(d, EchelonOptions::default());
-                for col in layout.columns(e) {
-                    if echelon.rank() == d {
-                        break;
-                    }
-                    let v: Vec<(usize, BigRational)> =
-                        (0..d).map(|g| (g, t[g][col].clone())).collect();
-                    echelon.insert(SparseRow::from_entries(v));
-                }
-                echelon.rref().into_iter().map(|(_, row)| row).collect()
-            })
-            .collect();
-        Ok(WitnessDor { displacements: d, spans })
+        let (displacements, spans) = spans_in(system, layout, coords)?;
+        Ok(WitnessDor { displacements, spans: Spans::Rational(spans) })
     }
 
     /// The oracle at a witness found by [`gcs_jacobian::find_witness`].
@@ -125,7 +179,17 @@ impl WitnessDor {
         layout: &Layout,
         witness: &Witness,
     ) -> Result<WitnessDor, RigidityError> {
-        WitnessDor::new(system, layout, &witness.coords)
+        if witness.source != WitnessSource::Modular {
+            return WitnessDor::new(system, layout, &witness.coords);
+        }
+        // A modular witness: the spans modulo the prime.
+        let coords: Vec<ModP> =
+            witness.coords_in().map_err(|e| RigidityError::Witness(e.to_string()))?;
+        if coords.len() != layout.ncols() || *layout != Layout::new(system) {
+            return Err(RigidityError::Witness("the layout is not the system's".into()));
+        }
+        let (displacements, spans) = spans_in(system, layout, &coords)?;
+        Ok(WitnessDor { displacements, spans: Spans::Modular(spans) })
     }
 
     /// Finds a witness of `system` (the sketch when it is one and is generic, else a rational
@@ -144,7 +208,7 @@ impl WitnessDor {
     /// The DOR of one entity (0 for a segment or an index out of range): 2 for a 2D point,
     /// line or circle, 3 for a 3D point, plane or sphere, 4 for a 3D line.
     pub fn entity_dor(&self, e: EntityIdx) -> usize {
-        self.spans.get(e.index()).map_or(0, Vec::len)
+        self.spans.entity(e.index())
     }
 
     /// The number of displacements of the dimension (3 or 6): the largest possible DOR.
@@ -173,18 +237,7 @@ impl DorOracle for WitnessDor {
             [] => 0,
             [one] => self.entity_dor(*one),
             [first, ..] if self.entity_dor(*first) == self.displacements => self.displacements,
-            _ => {
-                let mut echelon = Echelon::new(self.displacements, EchelonOptions::default());
-                'entities: for e in &base {
-                    for row in &self.spans[e.index()] {
-                        if echelon.rank() == self.displacements {
-                            break 'entities;
-                        }
-                        echelon.insert(row.clone());
-                    }
-                }
-                echelon.rank()
-            }
+            _ => self.spans.rank(&base, self.displacements),
         }
     }
 
