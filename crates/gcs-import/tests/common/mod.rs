@@ -1,0 +1,49 @@
+//! Shared helpers of the reader tests: where the corpus of real files from other projects is.
+//!
+//! The corpus (`shared/data/external`: SolveSpace's test files, FreeCAD documents, SketchGraphs'
+//! Onshape sample) is not in the repository (other projects' files, under their licences). The
+//! tests look for it at `$GCS_EXTERNAL_DATA`, then `../shared/data/external` beside the
+//! workspace, then `/work/shared/data/external`. Without it a corpus test says so on stderr and
+//! passes — except under CI (`CI` set), where a missing corpus is a failure.
+#![allow(dead_code, unreachable_pub)]
+
+use std::path::{Path, PathBuf};
+
+/// The corpus directory, or `None` (after saying so) when it is absent outside CI.
+pub fn external() -> Option<PathBuf> {
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let candidates = std::env::var_os("GCS_EXTERNAL_DATA")
+        .map(PathBuf::from)
+        .into_iter()
+        .chain([workspace.join("../shared/data/external"), "/work/shared/data/external".into()]);
+    for dir in candidates {
+        if dir.is_dir() {
+            return Some(dir);
+        }
+    }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "the external corpus is missing: set GCS_EXTERNAL_DATA to shared/data/external"
+    );
+    eprintln!("external corpus not found (set GCS_EXTERNAL_DATA): corpus test skipped");
+    None
+}
+
+/// Every file under `dir` whose name ends with `suffix` (case-insensitive), sorted.
+pub fn files_with_suffix(dir: &Path, suffix: &str) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.to_string_lossy().to_ascii_lowercase().ends_with(suffix) {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
