@@ -77,6 +77,10 @@ pub fn rebuild(system: &System, keep_sketch: impl Fn(EntityIdx) -> bool) -> Syst
     let mut b = SystemBuilder::new(system.name(), system.dim());
     for e in system.entity_indices() {
         let entity = system.entity(e);
+        if entity.owner.is_some() {
+            // A named point of a curve: its owner (or the constraint naming it) makes it.
+            continue;
+        }
         let id = entity.id.as_str();
         let keep = keep_sketch(e);
         let r = match &entity.geometry {
@@ -92,11 +96,27 @@ pub fn rebuild(system: &System, keep_sketch: impl Fn(EntityIdx) -> bool) -> Syst
             Geometry::Sphere { center, radius } => {
                 b.sphere(id, center.clone().filter(|_| keep), radius.clone().filter(|_| keep))
             }
+            Geometry::Arc { center, radius, start, end } => {
+                let at = |p: EntityIdx| match &system.entity(p).geometry {
+                    Geometry::Point { at } if keep_sketch(p) => at.clone(),
+                    _ => None,
+                };
+                b.arc(
+                    id,
+                    center.clone().filter(|_| keep),
+                    radius.clone().filter(|_| keep),
+                    at(*start),
+                    at(*end),
+                )
+            }
         };
         r.unwrap_or_else(|err| panic!("{}: rebuilding entity {id}: {err}", system.name()));
     }
     for c in system.constraint_indices() {
         let con = system.constraint(c);
+        if con.owner.is_some() {
+            continue;
+        }
         let args: Vec<&str> = con.args.iter().map(|e| system.entity(*e).id.as_str()).collect();
         b.constraint(con.kind, &con.id, &args, con.value.clone()).unwrap_or_else(|err| {
             panic!("{}: rebuilding constraint {}: {err}", system.name(), con.id)

@@ -121,6 +121,9 @@ fn cut_out(
     let mut b = gcs_model::SystemBuilder::new("cut", s.dim());
     for e in &keep {
         let ent = s.entity(*e);
+        if ent.owner.is_some() {
+            continue; // made with its owner
+        }
         match &ent.geometry {
             gcs_model::Geometry::Point { at } => b.point(&ent.id, at.clone()).map(|_| ()),
             gcs_model::Geometry::Line { at } => b.line(&ent.id, at.clone()).map(|_| ()),
@@ -134,11 +137,21 @@ fn cut_out(
             gcs_model::Geometry::Segment { from, to } => {
                 b.segment(&ent.id, &s.entity(*from).id, &s.entity(*to).id).map(|_| ())
             }
+            gcs_model::Geometry::Arc { center, radius, start, end } => {
+                let at = |p: &gcs_model::EntityIdx| match &s.entity(*p).geometry {
+                    gcs_model::Geometry::Point { at } => at.clone(),
+                    _ => None,
+                };
+                b.arc(&ent.id, center.clone(), radius.clone(), at(start), at(end)).map(|_| ())
+            }
         }
         .unwrap();
     }
     for c in constraints {
         let con = s.constraint(*c);
+        if con.owner.is_some() {
+            continue;
+        }
         let args: Vec<&str> = con.args.iter().map(|a| s.entity(*a).id.as_str()).collect();
         b.constraint(con.kind, &con.id, &args, con.value.clone()).unwrap();
     }

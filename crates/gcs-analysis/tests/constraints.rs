@@ -241,6 +241,18 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                         EntityKind::Circle => b.circle(&id, Some(at(5)), Some(int(2))),
                         EntityKind::Plane => b.plane(&id, Some([at(6), at(7)])),
                         EntityKind::Sphere => b.sphere(&id, Some(at(8)), Some(int(3))),
+                        EntityKind::Arc => {
+                            // Radius 5, end points at rational places on it.
+                            let c = at(9);
+                            let on = |dx: i64, dy: i64| vec![&c[0] + int(dx), &c[1] + int(dy)];
+                            b.arc(
+                                &id,
+                                Some(c.clone()),
+                                Some(int(5)),
+                                Some(on(3, 4)),
+                                Some(on(-4, 3)),
+                            )
+                        }
                     };
                     made.unwrap_or_else(|e| panic!("{e}"));
                     ids.push(id);

@@ -457,6 +457,17 @@ const CLAIMS: &[Claim] = &[
         clusters: None,
     },
     Claim {
+        file: "data/sketches/fillet.ron",
+        unknowns: Some(17),
+        equations: Some(17),
+        rank: 17,
+        dof_absolute: 0,
+        trivial_motions: 0,
+        dof: 0,
+        redundant: &[],
+        clusters: None,
+    },
+    Claim {
         file: "data/sketches/flange.ron",
         unknowns: Some(11),
         equations: Some(10),
@@ -520,6 +531,7 @@ const CLAIMS: &[Claim] = &[
 
 /// The models whose header says: one cluster, every entity and every constraint.
 const WHOLE: &[&str] = &[
+    "data/sketches/fillet.ron",
     "data/sketches/flange.ron",
     "data/paper/fig9a_w_decomposable.ron",
     "data/paper/fig9b_w_indecomposable.ron",

@@ -242,7 +242,28 @@ pub(crate) fn law<F: Field>(
                 .split(want_split, || (d, vec![rr]))
         }
         S::ConcentricCircles(p, q) => Law::exact(v::sub(&l.round(p).0, &l.round(q).0)),
+        S::CenterPoint { point, round } => Law::exact(v::sub(&l.point(point), &l.round(round).0)),
         S::Metric(Metric::Radius(e)) => Law::measure(l.round(e).1),
+        S::Metric(Metric::DistanceX(a, b)) => Law::measure(&l.point(b)[0] - &l.point(a)[0]),
+        S::Metric(Metric::DistanceY(a, b)) => Law::measure(&l.point(b)[1] - &l.point(a)[1]),
+        S::EqualRadius(a, b) => Law::exact(vec![&l.round(a).1 - &l.round(b).1]),
+        S::SymmetricAboutPoint { a, b, center } => {
+            let two = Dual::int(2);
+            let (x, y, m) = (l.point(a), l.point(b), l.point(center));
+            Law::exact(
+                m.iter().zip(x.iter().zip(&y)).map(|(m, (x, y))| &(&two * m) - &(x + y)).collect(),
+            )
+        }
+        S::TangentAtLineCircle { line, circle, at } => {
+            // The radius to the point is along the line's normal.
+            let r = v::sub(&l.point(at), &l.round(circle).0);
+            Law::exact(vec![v::cross2(&r, &l.normal2(line))])
+        }
+        S::TangentAtCircleCircle { a, b, at } => {
+            // The point and the two centres are collinear.
+            let p = l.point(at);
+            Law::exact(vec![v::cross2(&v::sub(&p, &l.round(a).0), &v::sub(&p, &l.round(b).0))])
+        }
         S::EqualLength(s, t) => {
             let (p1, q1) = l.segment(s);
             let (p2, q2) = l.segment(t);
@@ -297,6 +318,17 @@ fn fix_rows<F: Field>(l: &Local<'_, F>, e: EntityIdx, sketch: &SketchFn<'_, F>) 
             for (xj, sj) in x.iter().zip(&s) {
                 rows.push(xj - &Dual::constant(sj.clone()));
             }
+        }
+    }
+    // An arc's end points keep their places along its circle: each stays on the ray from the
+    // centre through its sketch position, `(p − c) × (p₀ − c₀) = 0`.
+    if let (Some((start, end)), Some(c0)) = (l.system().arc_points(e), sketch(e)) {
+        let c = l.round(e).0;
+        for p in [start, end] {
+            let Some(p0) = sketch(p) else { continue };
+            let ray: Vec<F> = p0.iter().zip(&c0).map(|(a, b)| a.sub(b)).collect();
+            let u = v::sub(&l.point(p), &c);
+            rows.push(&u[0].scale(&ray[1]) - &u[1].scale(&ray[0]));
         }
     }
     rows
@@ -390,6 +422,8 @@ pub(crate) fn measure(
         }
         M::AnglePlanePlane(p, q) => unsigned(unsigned_angle(&l.plane(p).0, &l.plane(q).0, false)),
         M::Radius(e) => length(l.round(e).1),
+        M::DistanceX(a, b) => length(&l.point(b)[0] - &l.point(a)[0]),
+        M::DistanceY(a, b) => length(&l.point(b)[1] - &l.point(a)[1]),
     })
 }
 

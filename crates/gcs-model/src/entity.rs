@@ -33,6 +33,9 @@ pub enum EntityKind {
     Plane,
     /// A sphere of variable centre and radius (3D).
     Sphere,
+    /// A circular arc (2D): a circle of variable centre and radius with two points on it, its
+    /// start and end, counter-clockwise from start to end.
+    Arc,
 }
 
 /// How constraints see an entity: the roles of the constraint table (format §1). Several kinds
@@ -64,13 +67,14 @@ impl EntityClass {
 
 impl EntityKind {
     /// Every entity kind, in the order of the format's table.
-    pub const ALL: [EntityKind; 6] = [
+    pub const ALL: [EntityKind; 7] = [
         EntityKind::Point,
         EntityKind::Line,
         EntityKind::Segment,
         EntityKind::Circle,
         EntityKind::Plane,
         EntityKind::Sphere,
+        EntityKind::Arc,
     ];
 
     /// The variant name used in model files (`Point`, `Line`, …).
@@ -82,6 +86,7 @@ impl EntityKind {
             EntityKind::Circle => "Circle",
             EntityKind::Plane => "Plane",
             EntityKind::Sphere => "Sphere",
+            EntityKind::Arc => "Arc",
         }
     }
 
@@ -94,6 +99,7 @@ impl EntityKind {
             EntityKind::Circle => "circle",
             EntityKind::Plane => "plane",
             EntityKind::Sphere => "sphere",
+            EntityKind::Arc => "arc",
         }
     }
 
@@ -102,7 +108,7 @@ impl EntityKind {
     pub fn exists_in(self, dim: Dim) -> bool {
         match self {
             EntityKind::Point | EntityKind::Line | EntityKind::Segment => true,
-            EntityKind::Circle => dim == Dim::Two,
+            EntityKind::Circle | EntityKind::Arc => dim == Dim::Two,
             EntityKind::Plane | EntityKind::Sphere => dim == Dim::Three,
         }
     }
@@ -122,7 +128,7 @@ impl EntityKind {
                 Dim::Three => 4,
             },
             EntityKind::Segment => 0,
-            EntityKind::Circle | EntityKind::Plane => 3,
+            EntityKind::Circle | EntityKind::Plane | EntityKind::Arc => 3,
             EntityKind::Sphere => 4,
         }
     }
@@ -133,7 +139,7 @@ impl EntityKind {
             EntityKind::Point => EntityClass::Point,
             EntityKind::Line | EntityKind::Segment => EntityClass::Line,
             EntityKind::Plane => EntityClass::Plane,
-            EntityKind::Circle => EntityClass::Circle,
+            EntityKind::Circle | EntityKind::Arc => EntityClass::Circle,
             EntityKind::Sphere => EntityClass::Sphere,
         }
     }
@@ -147,7 +153,8 @@ impl EntityKind {
             | EntityKind::Line
             | EntityKind::Circle
             | EntityKind::Plane
-            | EntityKind::Sphere => false,
+            | EntityKind::Sphere
+            | EntityKind::Arc => false,
         }
     }
 
@@ -160,7 +167,8 @@ impl EntityKind {
             | EntityKind::Line
             | EntityKind::Circle
             | EntityKind::Plane
-            | EntityKind::Sphere => &[],
+            | EntityKind::Sphere
+            | EntityKind::Arc => &[],
         }
     }
 
@@ -217,6 +225,19 @@ pub enum Geometry {
         /// Sketch radius.
         radius: Option<BigRational>,
     },
+    /// A circular arc (2D): its circle, and its start and end points — point entities of their
+    /// own (`<id>.start`, `<id>.end`, owned by the arc), held on the circle by implicit
+    /// `Incident` constraints.
+    Arc {
+        /// Sketch centre.
+        center: Option<Coords>,
+        /// Sketch radius.
+        radius: Option<BigRational>,
+        /// The start point.
+        start: EntityIdx,
+        /// The end point.
+        end: EntityIdx,
+    },
 }
 
 impl Geometry {
@@ -229,6 +250,7 @@ impl Geometry {
             Geometry::Circle { .. } => EntityKind::Circle,
             Geometry::Plane { .. } => EntityKind::Plane,
             Geometry::Sphere { .. } => EntityKind::Sphere,
+            Geometry::Arc { .. } => EntityKind::Arc,
         }
     }
 
@@ -241,7 +263,8 @@ impl Geometry {
             | Geometry::Line { .. }
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
-            | Geometry::Sphere { .. } => Vec::new(),
+            | Geometry::Sphere { .. }
+            | Geometry::Arc { .. } => Vec::new(),
         }
     }
 
@@ -303,7 +326,8 @@ impl Geometry {
             | Geometry::Line { .. }
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
-            | Geometry::Sphere { .. } => Ok(()),
+            | Geometry::Sphere { .. }
+            | Geometry::Arc { .. } => Ok(()),
         }
     }
 
@@ -313,9 +337,9 @@ impl Geometry {
         match self {
             Geometry::Point { at } => at.is_some(),
             Geometry::Line { at } | Geometry::Plane { at } => at.is_some(),
-            Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
-                center.is_some() && radius.is_some()
-            }
+            Geometry::Circle { center, radius }
+            | Geometry::Sphere { center, radius }
+            | Geometry::Arc { center, radius, .. } => center.is_some() && radius.is_some(),
             Geometry::Segment { .. } => false,
         }
     }
@@ -346,7 +370,9 @@ impl Geometry {
                 }
                 Ok(())
             }
-            Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
+            Geometry::Circle { center, radius }
+            | Geometry::Sphere { center, radius }
+            | Geometry::Arc { center, radius, .. } => {
                 if let Some(c) = center {
                     coords("center", c)?;
                 }
@@ -358,7 +384,8 @@ impl Geometry {
 
     /// The RON form of the entity (format §1), exactly: numbers that are not terminating
     /// decimals are written as quoted fractions. `name` gives the id of a referenced entity.
-    pub(crate) fn to_ron(&self, id: &str, name: &dyn Fn(EntityIdx) -> String) -> String {
+    pub(crate) fn to_ron(&self, id: &str, system: &System) -> String {
+        let name = |e: EntityIdx| system.entity(e).id.clone();
         let id = quote(id);
         let kind = self.kind().name();
         match self {
@@ -388,6 +415,22 @@ impl Geometry {
                 s.push(')');
                 s
             }
+            Geometry::Arc { center, radius, start, end } => {
+                let mut s = format!("Arc(id: {id}");
+                if let Some(c) = center {
+                    let _ = write!(s, ", center: {}", ron_coords(c));
+                }
+                if let Some(r) = radius {
+                    let _ = write!(s, ", radius: {}", format_exact(r));
+                }
+                for (field, p) in [("start", start), ("end", end)] {
+                    if let Geometry::Point { at: Some(at) } = &system.entity(*p).geometry {
+                        let _ = write!(s, ", {field}: {}", ron_coords(at));
+                    }
+                }
+                s.push(')');
+                s
+            }
         }
     }
 }
@@ -400,7 +443,12 @@ fn degenerate(id: &str, field: &'static str, what: &str) -> ModelError {
     })
 }
 
-fn check_coords(id: &str, field: &'static str, c: &Coords, dim: Dim) -> Result<(), ModelError> {
+pub(crate) fn check_coords(
+    id: &str,
+    field: &'static str,
+    c: &Coords,
+    dim: Dim,
+) -> Result<(), ModelError> {
     let expected = dim.coords();
     if c.len() != expected {
         return Err(ModelError::new(ModelErrorKind::WrongCoordinateCount {
@@ -495,6 +543,17 @@ pub(crate) enum RawEntity {
         #[serde(default)]
         radius: Option<Num>,
     },
+    Arc {
+        id: String,
+        #[serde(default)]
+        center: Option<Vec<Num>>,
+        #[serde(default)]
+        radius: Option<Num>,
+        #[serde(default)]
+        start: Option<Vec<Num>>,
+        #[serde(default)]
+        end: Option<Vec<Num>>,
+    },
 }
 
 /// What a [`RawEntity`] becomes: its id, its sketch data, and the ids of the entities it is
@@ -504,6 +563,8 @@ pub(crate) struct ReadEntity<'r> {
     /// The geometry; parts are placeholders until the builder resolves `refs`.
     pub(crate) geometry: Geometry,
     pub(crate) refs: Vec<(&'static str, &'r str)>,
+    /// The sketch positions of the points an arc owns (start, end).
+    pub(crate) owned_points: Vec<Option<Coords>>,
 }
 
 impl RawEntity {
@@ -518,6 +579,7 @@ impl RawEntity {
                     at: at.as_deref().map(|v| read_coords(id, "at", v)).transpose()?,
                 },
                 refs: Vec::new(),
+                owned_points: Vec::new(),
             },
             RawEntity::Line { id, at } => ReadEntity {
                 id,
@@ -525,11 +587,13 @@ impl RawEntity {
                     at: at.as_deref().map(|v| two_coords(id, "at", v)).transpose()?,
                 },
                 refs: Vec::new(),
+                owned_points: Vec::new(),
             },
             RawEntity::Segment { id, from, to } => ReadEntity {
                 id,
                 geometry: Geometry::Segment { from: placeholder, to: placeholder },
                 refs: vec![("from", from), ("to", to)],
+                owned_points: Vec::new(),
             },
             RawEntity::Circle { id, center, radius } | RawEntity::Sphere { id, center, radius } => {
                 let center = center.as_deref().map(|v| read_coords(id, "center", v)).transpose()?;
@@ -540,7 +604,26 @@ impl RawEntity {
                 } else {
                     Geometry::Sphere { center, radius }
                 };
-                ReadEntity { id, geometry, refs: Vec::new() }
+                ReadEntity { id, geometry, refs: Vec::new(), owned_points: Vec::new() }
+            }
+            RawEntity::Arc { id, center, radius, start, end } => {
+                let center = center.as_deref().map(|v| read_coords(id, "center", v)).transpose()?;
+                let radius =
+                    radius.as_ref().map(|r| number("entity", id, "radius", r)).transpose()?;
+                let start = start.as_deref().map(|v| read_coords(id, "start", v)).transpose()?;
+                let end = end.as_deref().map(|v| read_coords(id, "end", v)).transpose()?;
+                let placeholder = EntityIdx(u32::MAX);
+                ReadEntity {
+                    id,
+                    geometry: Geometry::Arc {
+                        center,
+                        radius,
+                        start: placeholder,
+                        end: placeholder,
+                    },
+                    refs: Vec::new(),
+                    owned_points: vec![start, end],
+                }
             }
             RawEntity::Plane { id, at } => ReadEntity {
                 id,
@@ -548,6 +631,7 @@ impl RawEntity {
                     at: at.as_deref().map(|v| two_coords(id, "at", v)).transpose()?,
                 },
                 refs: Vec::new(),
+                owned_points: Vec::new(),
             },
         })
     }

@@ -58,6 +58,9 @@ pub enum Role {
     Absolute,
     /// A parameter-free relation invariant under displacements (incidence, parallelism…).
     Relation,
+    /// A dimension that is not invariant under displacements: a horizontal or vertical
+    /// distance (`DistanceX`, `DistanceY`).
+    AbsoluteMetric,
 }
 
 /// The kind of a constraint.
@@ -93,11 +96,22 @@ pub enum ConstraintKind {
     Vertical,
     /// An entity pinned at its sketch position (absolute).
     Fix,
+    /// Two circles or arcs of equal radius.
+    EqualRadius,
+    /// The horizontal distance between two points: the second's x minus the first's (2D,
+    /// absolute).
+    DistanceX,
+    /// The vertical distance between two points: the second's y minus the first's (2D,
+    /// absolute).
+    DistanceY,
+    /// Two curves tangent at a given point (a fillet's joint): their normals there are
+    /// parallel. The point is put on both curves by other constraints.
+    TangentAt,
 }
 
 impl ConstraintKind {
     /// Every constraint kind, in the order of the format's table.
-    pub const ALL: [ConstraintKind; 15] = [
+    pub const ALL: [ConstraintKind; 19] = [
         ConstraintKind::Coincident,
         ConstraintKind::Distance,
         ConstraintKind::Angle,
@@ -113,6 +127,10 @@ impl ConstraintKind {
         ConstraintKind::Horizontal,
         ConstraintKind::Vertical,
         ConstraintKind::Fix,
+        ConstraintKind::EqualRadius,
+        ConstraintKind::DistanceX,
+        ConstraintKind::DistanceY,
+        ConstraintKind::TangentAt,
     ];
 
     /// The variant names used in model files, in the order of [`ConstraintKind::ALL`].
@@ -144,6 +162,10 @@ impl ConstraintKind {
             ConstraintKind::Horizontal => "Horizontal",
             ConstraintKind::Vertical => "Vertical",
             ConstraintKind::Fix => "Fix",
+            ConstraintKind::EqualRadius => "EqualRadius",
+            ConstraintKind::DistanceX => "DistanceX",
+            ConstraintKind::DistanceY => "DistanceY",
+            ConstraintKind::TangentAt => "TangentAt",
         }
     }
 
@@ -153,6 +175,7 @@ impl ConstraintKind {
         match self {
             K::Distance | K::Angle | K::Radius => Role::Metric,
             K::Horizontal | K::Vertical | K::Fix => Role::Absolute,
+            K::DistanceX | K::DistanceY => Role::AbsoluteMetric,
             K::Coincident
             | K::Parallel
             | K::Perpendicular
@@ -161,19 +184,21 @@ impl ConstraintKind {
             | K::Concentric
             | K::EqualLength
             | K::Midpoint
-            | K::Symmetric => Role::Relation,
+            | K::Symmetric
+            | K::EqualRadius
+            | K::TangentAt => Role::Relation,
         }
     }
 
     /// Whether the constraint carries a metric value (a dimension in the CAD sense). Metric
     /// constraints need no special witness: their values are read off it.
     pub fn is_metric(self) -> bool {
-        self.role() == Role::Metric
+        matches!(self.role(), Role::Metric | Role::AbsoluteMetric)
     }
 
     /// Whether the constraint is absolute: not invariant under displacements.
     pub fn is_absolute(self) -> bool {
-        self.role() == Role::Absolute
+        matches!(self.role(), Role::Absolute | Role::AbsoluteMetric)
     }
 
     /// The fields of the constraint's RON form (format §1), in order: `id`, the entity fields,
@@ -181,7 +206,8 @@ impl ConstraintKind {
     pub fn ron_fields(self) -> &'static [&'static str] {
         use ConstraintKind as K;
         match self {
-            K::Distance | K::Angle => &["id", "a", "b", "value"],
+            K::Distance | K::Angle | K::DistanceX | K::DistanceY => &["id", "a", "b", "value"],
+            K::TangentAt => &["id", "a", "b", "at"],
             K::Radius => &["id", "a", "value"],
             K::Horizontal | K::Vertical | K::Fix => &["id", "a"],
             K::Midpoint => &["id", "point", "segment"],
@@ -192,7 +218,8 @@ impl ConstraintKind {
             | K::Incident
             | K::Tangent
             | K::Concentric
-            | K::EqualLength => &["id", "a", "b"],
+            | K::EqualLength
+            | K::EqualRadius => &["id", "a", "b"],
         }
     }
 
@@ -218,8 +245,8 @@ mod tests {
         use EntityKind::*;
         let two: Vec<usize> = EntityKind::ALL.iter().map(|k| k.dof(Dim::Two)).collect();
         let three: Vec<usize> = EntityKind::ALL.iter().map(|k| k.dof(Dim::Three)).collect();
-        assert_eq!(two, [2, 2, 0, 3, 0, 0]);
-        assert_eq!(three, [3, 4, 0, 0, 3, 4]);
+        assert_eq!(two, [2, 2, 0, 3, 0, 0, 3]);
+        assert_eq!(three, [3, 4, 0, 0, 3, 4, 0]);
         assert!(Circle.exists_in(Dim::Two) && !Circle.exists_in(Dim::Three));
         assert!(Plane.exists_in(Dim::Three) && !Plane.exists_in(Dim::Two));
     }

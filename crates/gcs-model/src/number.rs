@@ -86,6 +86,27 @@ pub fn rational_from_f64_decimal(x: f64) -> Option<BigRational> {
     parse_decimal(&format!("{x}"))
 }
 
+/// The square root of a non-negative rational: exact when it is rational (a quotient of perfect
+/// squares), else the shortest decimal of the double nearest it. `None` for a negative number.
+///
+/// # Example
+/// ```
+/// use gcs_model::number::{parse_exact, sqrt_rational};
+/// assert_eq!(sqrt_rational(&parse_exact("6.25").unwrap()), parse_exact("2.5"));
+/// assert_eq!(sqrt_rational(&parse_exact("2").unwrap()), parse_exact("1.4142135623730951"));
+/// ```
+pub fn sqrt_rational(q: &BigRational) -> Option<BigRational> {
+    if q.is_negative() {
+        return None;
+    }
+    let (n, d) = (q.numer().sqrt(), q.denom().sqrt());
+    if &(&n * &n) == q.numer() && &(&d * &d) == q.denom() {
+        return Some(BigRational::new(n, d));
+    }
+    use num_traits::ToPrimitive;
+    rational_from_f64_decimal(q.to_f64()?.sqrt())
+}
+
 /// Writes a rational the way a model file holds it: an integer, a terminating decimal, or (when
 /// the decimal expansion does not terminate) a quoted fraction `"p/q"`, which the reader
 /// accepts too.

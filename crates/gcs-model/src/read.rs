@@ -3,12 +3,13 @@
 use num_rational::BigRational;
 use serde::Deserialize;
 
+use crate::entity::Geometry;
 use crate::entity::RawEntity;
 use crate::error::{ModelError, ModelErrorKind, Position};
 use crate::kinds::{ConstraintKind, Dim};
 use crate::locate::{ItemLoc, locate};
 use crate::number::Num;
-use crate::system::{Coords, System, SystemBuilder};
+use crate::system::{ConstraintIdx, Coords, EntityIdx, System, SystemBuilder};
 
 #[derive(Deserialize)]
 #[serde(rename = "System", deny_unknown_fields)]
@@ -163,19 +164,22 @@ pub(crate) fn two_coords(
     Ok([read_coords(owner, field, &v[0])?, read_coords(owner, field, &v[1])?])
 }
 
-fn add_entity(b: &mut SystemBuilder, raw: &RawEntity) -> Result<(), ModelError> {
+fn add_entity(b: &mut SystemBuilder, raw: &RawEntity) -> Result<EntityIdx, ModelError> {
     let read = raw.read()?;
+    if let Geometry::Arc { center, radius, .. } = read.geometry {
+        let mut owned = read.owned_points.into_iter();
+        let (start, end) = (owned.next().flatten(), owned.next().flatten());
+        return b.arc(read.id, center, radius, start, end);
+    }
     let parts: Vec<&str> = read.refs.iter().map(|(_, id)| *id).collect();
-    b.entity(read.id, read.geometry, &parts)?;
-    Ok(())
+    b.entity(read.id, read.geometry, &parts)
 }
 
-fn add_constraint(b: &mut SystemBuilder, raw: &RawConstraint) -> Result<(), ModelError> {
+fn add_constraint(b: &mut SystemBuilder, raw: &RawConstraint) -> Result<ConstraintIdx, ModelError> {
     let id = raw.id.as_str();
     let value = raw.value.as_ref().map(|v| number("constraint", id, "value", v)).transpose()?;
     let args: Vec<&str> = raw.args.iter().map(String::as_str).collect();
-    b.constraint(raw.kind, id, &args, value)?;
-    Ok(())
+    b.constraint(raw.kind, id, &args, value)
 }
 
 /// The model name a file gets when it does not give one: the file stem of the origin.
@@ -236,21 +240,19 @@ impl System {
         })?;
         let name = raw.name.clone().unwrap_or_else(|| default_name(origin));
         let mut b = SystemBuilder::new(name, dim);
+        let mut entity_pos = Vec::with_capacity(raw.entities.len());
         for (i, e) in raw.entities.iter().enumerate() {
-            add_entity(&mut b, e)
+            let idx = add_entity(&mut b, e)
                 .map_err(|err| locate_error(err, origin, located.entities.get(i)))?;
+            entity_pos.push((idx, located.entities.get(i).and_then(|l| l.start)));
         }
+        let mut constraint_pos = Vec::with_capacity(raw.constraints.len());
         for (i, c) in raw.constraints.iter().enumerate() {
-            add_constraint(&mut b, c)
+            let idx = add_constraint(&mut b, c)
                 .map_err(|err| locate_error(err, origin, located.constraints.get(i)))?;
+            constraint_pos.push((idx, located.constraints.get(i).and_then(|l| l.start)));
         }
         let mut system = b.build();
-        let entity_pos: Vec<Option<Position>> = (0..raw.entities.len())
-            .map(|i| located.entities.get(i).and_then(|l| l.start))
-            .collect();
-        let constraint_pos: Vec<Option<Position>> = (0..raw.constraints.len())
-            .map(|i| located.constraints.get(i).and_then(|l| l.start))
-            .collect();
         system.set_position(&entity_pos, &constraint_pos);
         Ok(system)
     }

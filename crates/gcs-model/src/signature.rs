@@ -48,6 +48,10 @@ pub enum Metric {
     },
     /// The radius of a circle or sphere.
     Radius(EntityIdx),
+    /// The horizontal distance from the first point to the second (signed, absolute).
+    DistanceX(EntityIdx, EntityIdx),
+    /// The vertical distance from the first point to the second (signed, absolute).
+    DistanceY(EntityIdx, EntityIdx),
 }
 
 impl Metric {
@@ -64,6 +68,8 @@ impl Metric {
                 ConstraintKind::Angle
             }
             M::Radius(_) => ConstraintKind::Radius,
+            M::DistanceX(..) => ConstraintKind::DistanceX,
+            M::DistanceY(..) => ConstraintKind::DistanceY,
         }
     }
 
@@ -75,7 +81,9 @@ impl Metric {
             | M::DistanceLineLine(a, b)
             | M::DistancePlanePlane(a, b)
             | M::AngleLineLine(a, b)
-            | M::AnglePlanePlane(a, b) => vec![a, b],
+            | M::AnglePlanePlane(a, b)
+            | M::DistanceX(a, b)
+            | M::DistanceY(a, b) => vec![a, b],
             M::DistancePointLine { point, line: other }
             | M::DistancePointPlane { point, plane: other } => vec![point, other],
             M::AngleLinePlane { line, plane } => vec![line, plane],
@@ -170,6 +178,13 @@ pub enum Signature {
     TangentSphereSphere(EntityIdx, EntityIdx),
     /// Two circles with the same centre (DOC 2).
     ConcentricCircles(EntityIdx, EntityIdx),
+    /// A point at the centre of a circle, arc or sphere (DOC: the dimension).
+    CenterPoint {
+        /// The point.
+        point: EntityIdx,
+        /// The circle, arc or sphere.
+        round: EntityIdx,
+    },
     /// Two segments of equal length.
     EqualLength(EntityIdx, EntityIdx),
     /// A point at the middle of a segment (DOC: the dimension).
@@ -178,6 +193,36 @@ pub enum Signature {
         point: EntityIdx,
         /// The segment.
         segment: EntityIdx,
+    },
+    /// Two points symmetric about a point: it is their midpoint (DOC: the dimension).
+    SymmetricAboutPoint {
+        /// First point.
+        a: EntityIdx,
+        /// Second point.
+        b: EntityIdx,
+        /// The centre of symmetry.
+        center: EntityIdx,
+    },
+    /// Two circles or arcs of equal radius.
+    EqualRadius(EntityIdx, EntityIdx),
+    /// A line and a circle tangent at a point: the radius to the point is perpendicular to
+    /// the line.
+    TangentAtLineCircle {
+        /// The line.
+        line: EntityIdx,
+        /// The circle or arc.
+        circle: EntityIdx,
+        /// The point of tangency.
+        at: EntityIdx,
+    },
+    /// Two circles tangent at a point: the point and the two centres are collinear.
+    TangentAtCircleCircle {
+        /// First circle or arc.
+        a: EntityIdx,
+        /// Second circle or arc.
+        b: EntityIdx,
+        /// The point of tangency.
+        at: EntityIdx,
     },
     /// Two points symmetric about a line (2D, DOC 2).
     Symmetric {
@@ -219,10 +264,12 @@ impl Signature {
             | S::TangentCircleCircle(..)
             | S::TangentPlaneSphere { .. }
             | S::TangentSphereSphere(..) => K::Tangent,
-            S::ConcentricCircles(..) => K::Concentric,
+            S::ConcentricCircles(..) | S::CenterPoint { .. } => K::Concentric,
             S::EqualLength(..) => K::EqualLength,
             S::Midpoint { .. } => K::Midpoint,
-            S::Symmetric { .. } => K::Symmetric,
+            S::Symmetric { .. } | S::SymmetricAboutPoint { .. } => K::Symmetric,
+            S::EqualRadius(..) => K::EqualRadius,
+            S::TangentAtLineCircle { .. } | S::TangentAtCircleCircle { .. } => K::TangentAt,
             S::Horizontal(_) => K::Horizontal,
             S::Vertical(_) => K::Vertical,
             S::Fix(_) => K::Fix,
@@ -242,18 +289,23 @@ impl Signature {
             | S::TangentCircleCircle(a, b)
             | S::TangentSphereSphere(a, b)
             | S::ConcentricCircles(a, b)
-            | S::EqualLength(a, b) => vec![a, b],
+            | S::EqualLength(a, b)
+            | S::EqualRadius(a, b) => vec![a, b],
             S::IncidentPointLine { point, line: other }
             | S::IncidentPointPlane { point, plane: other }
             | S::IncidentPointCircle { point, circle: other }
             | S::IncidentPointSphere { point, sphere: other }
-            | S::Midpoint { point, segment: other } => vec![point, other],
+            | S::Midpoint { point, segment: other }
+            | S::CenterPoint { point, round: other } => vec![point, other],
             S::ParallelLinePlane { line, plane }
             | S::PerpendicularLinePlane { line, plane }
             | S::IncidentLinePlane { line, plane } => vec![line, plane],
             S::TangentLineCircle { line, circle } => vec![line, circle],
             S::TangentPlaneSphere { plane, sphere } => vec![plane, sphere],
             S::Symmetric { a, b, axis } => vec![a, b, axis],
+            S::SymmetricAboutPoint { a, b, center } => vec![a, b, center],
+            S::TangentAtLineCircle { line, circle, at } => vec![line, circle, at],
+            S::TangentAtCircleCircle { a, b, at } => vec![a, b, at],
             S::Horizontal(e) | S::Vertical(e) | S::Fix(e) => vec![e],
         }
     }
@@ -403,7 +455,16 @@ impl Signature {
             }
             K::Concentric => pair(C::Circle, C::Circle)
                 .map(|(a, b)| (S::ConcentricCircles(a, b), 2))
-                .ok_or("two circles"),
+                .or_else(|| {
+                    pair(C::Point, C::Circle)
+                        .or_else(|| pair(C::Point, C::Sphere))
+                        .map(|(point, round)| (S::CenterPoint { point, round }, n))
+                })
+                .ok_or(if d2 {
+                    "two circles, or a point and a circle"
+                } else {
+                    "a point and a sphere"
+                }),
             K::Radius => single(C::Circle)
                 .or_else(|| single(C::Sphere))
                 .map(|e| (S::Metric(M::Radius(e)), 1))
@@ -420,15 +481,58 @@ impl Signature {
                 }
                 _ => Err("a point (field point) and a segment (field segment)"),
             },
-            K::Symmetric => {
+            K::Symmetric => match classes.as_slice() {
+                [C::Point, C::Point, C::Line] if d2 => {
+                    Ok((S::Symmetric { a: args[0], b: args[1], axis: args[2] }, 2))
+                }
+                [C::Point, C::Point, C::Point] => {
+                    Ok((S::SymmetricAboutPoint { a: args[0], b: args[1], center: args[2] }, n))
+                }
+                _ if d2 => {
+                    Err("two points (fields a, b) and a line, segment or point (field axis)")
+                }
+                _ => Err(
+                    "two points (fields a, b) and a point (field axis); about a line in 2D only",
+                ),
+            },
+            K::EqualRadius => pair(C::Circle, C::Circle)
+                .map(|(a, b)| (S::EqualRadius(a, b), 1))
+                .ok_or("two circles or arcs"),
+            K::DistanceX | K::DistanceY => {
                 if !d2 {
-                    return Err("two points and an axis line, in 2D only");
+                    return Err("two points, in 2D only");
                 }
                 match classes.as_slice() {
-                    [C::Point, C::Point, C::Line] => {
-                        Ok((S::Symmetric { a: args[0], b: args[1], axis: args[2] }, 2))
+                    [C::Point, C::Point] => Ok((
+                        S::Metric(if kind == K::DistanceX {
+                            M::DistanceX(args[0], args[1])
+                        } else {
+                            M::DistanceY(args[0], args[1])
+                        }),
+                        1,
+                    )),
+                    _ => Err("two points"),
+                }
+            }
+            K::TangentAt => {
+                let expected = "two curves (line–circle or circle–circle; arcs are circles) and \
+                                a point (field at), in 2D";
+                if !d2 {
+                    return Err(expected);
+                }
+                match classes.as_slice() {
+                    [C::Line, C::Circle, C::Point] => Ok((
+                        S::TangentAtLineCircle { line: args[0], circle: args[1], at: args[2] },
+                        1,
+                    )),
+                    [C::Circle, C::Line, C::Point] => Ok((
+                        S::TangentAtLineCircle { line: args[1], circle: args[0], at: args[2] },
+                        1,
+                    )),
+                    [C::Circle, C::Circle, C::Point] => {
+                        Ok((S::TangentAtCircleCircle { a: args[0], b: args[1], at: args[2] }, 1))
                     }
-                    _ => Err("two points (fields a, b) and a line or segment (field axis)"),
+                    _ => Err(expected),
                 }
             }
             K::Horizontal | K::Vertical => {

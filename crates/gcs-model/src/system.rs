@@ -46,6 +46,10 @@ pub struct Entity {
     pub geometry: Geometry,
     /// Where the entity is written, when it was read from a file.
     pub position: Option<Position>,
+    /// For a named point of a curve that the system made itself (an arc's `<id>.start` and
+    /// `<id>.end`, a circle's `<id>.center` once a constraint names it): the curve. Such an
+    /// entity is not written back to a model file (its owner's fields say it all).
+    pub owner: Option<EntityIdx>,
 }
 
 impl Entity {
@@ -79,6 +83,10 @@ pub struct Constraint {
     pub doc: usize,
     /// Where the constraint is written, when it was read from a file.
     pub position: Option<Position>,
+    /// For a constraint the system made itself to hold a named point of a curve in place
+    /// (an arc's end on its circle, `<point>@<arc>`; a circle's centre point at its centre,
+    /// `<point>@<circle>`): the curve. Not written back to a model file.
+    pub owner: Option<EntityIdx>,
 }
 
 /// Either kind of item an id can name.
@@ -172,8 +180,34 @@ impl System {
             | Geometry::Line { .. }
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
+            | Geometry::Sphere { .. }
+            | Geometry::Arc { .. } => None,
+        }
+    }
+
+    /// The start and end points of an arc, `None` for any other kind.
+    pub fn arc_points(&self, idx: EntityIdx) -> Option<(EntityIdx, EntityIdx)> {
+        match self.entity(idx).geometry {
+            Geometry::Arc { start, end, .. } => Some((start, end)),
+            Geometry::Point { .. }
+            | Geometry::Line { .. }
+            | Geometry::Segment { .. }
+            | Geometry::Circle { .. }
+            | Geometry::Plane { .. }
             | Geometry::Sphere { .. } => None,
         }
+    }
+
+    /// The number of entities written in the model (those the system made itself, the named
+    /// points of curves, not counted).
+    pub fn written_entities(&self) -> usize {
+        self.entities.iter().filter(|e| e.owner.is_none()).count()
+    }
+
+    /// The number of constraints written in the model (the implicit ones that hold named
+    /// points of curves not counted).
+    pub fn written_constraints(&self) -> usize {
+        self.constraints.iter().filter(|c| c.owner.is_none()).count()
     }
 
     /// Degrees of freedom of one entity (0 for a segment).
@@ -246,10 +280,18 @@ impl System {
     }
 
     /// The entities with degrees of freedom that a constraint acts on (segments replaced by
-    /// their points), without repetition, in first-use order.
+    /// their points; a `Fix` on an arc also pins its end points), without repetition, in
+    /// first-use order.
     pub fn constraint_base_entities(&self, c: ConstraintIdx) -> Vec<EntityIdx> {
         let mut out = Vec::new();
-        for e in self.constraint(c).signature.entities() {
+        let signature = self.constraint(c).signature;
+        let mut entities = signature.entities();
+        if let Signature::Fix(e) = signature
+            && let Some((start, end)) = self.arc_points(e)
+        {
+            entities.extend([start, end]);
+        }
+        for e in entities {
             for b in self.base_entities(e) {
                 if !out.contains(&b) {
                     out.push(b);
@@ -259,16 +301,28 @@ impl System {
         out
     }
 
+    /// Sets where items are written: `(entity, position)` and `(constraint, position)` pairs.
+    /// The named points and implicit constraints of a curve take its position.
     pub(crate) fn set_position(
         &mut self,
-        entities: &[Option<Position>],
-        constraints: &[Option<Position>],
+        entities: &[(EntityIdx, Option<Position>)],
+        constraints: &[(ConstraintIdx, Option<Position>)],
     ) {
-        for (e, p) in self.entities.iter_mut().zip(entities) {
-            e.position = *p;
+        for (e, p) in entities {
+            self.entities[e.index()].position = *p;
         }
-        for (c, p) in self.constraints.iter_mut().zip(constraints) {
-            c.position = *p;
+        for (c, p) in constraints {
+            self.constraints[c.index()].position = *p;
+        }
+        for i in 0..self.entities.len() {
+            if let Some(owner) = self.entities[i].owner {
+                self.entities[i].position = self.entities[owner.index()].position;
+            }
+        }
+        for c in &mut self.constraints {
+            if let Some(owner) = c.owner {
+                c.position = self.entities[owner.index()].position;
+            }
         }
     }
 }
@@ -280,8 +334,8 @@ impl fmt::Display for System {
             "{} ({}, {} entities, {} constraints)",
             self.name,
             self.dim,
-            self.entities.len(),
-            self.constraints.len()
+            self.written_entities(),
+            self.written_constraints()
         )
     }
 }
@@ -353,6 +407,16 @@ impl SystemBuilder {
         geometry: Geometry,
         names: &[&str],
     ) -> Result<EntityIdx, ModelError> {
+        self.push_owned_entity(id, geometry, names, None)
+    }
+
+    fn push_owned_entity(
+        &mut self,
+        id: &str,
+        geometry: Geometry,
+        names: &[&str],
+        owner: Option<EntityIdx>,
+    ) -> Result<EntityIdx, ModelError> {
         self.claim_id(id)?;
         let kind = geometry.kind();
         if !kind.exists_in(self.system.dim) {
@@ -368,8 +432,29 @@ impl SystemBuilder {
             geometry.check_parts(id, fields, names, &self.system)?;
         }
         let idx = EntityIdx(self.system.entities.len() as u32);
-        self.system.entities.push(Entity { id: id.to_owned(), geometry, position: None });
+        self.system.entities.push(Entity { id: id.to_owned(), geometry, position: None, owner });
         self.system.ids.insert(id.to_owned(), Item::Entity(idx));
+        if let Some((from, to)) = self.system.segment_points(idx) {
+            // A segment's end points are also `<id>.start` and `<id>.end`.
+            for (part, point) in [("start", from), ("end", to)] {
+                let alias = format!("{id}.{part}");
+                match self.system.ids.get(&alias) {
+                    None => {
+                        self.system.ids.insert(alias, Item::Entity(point));
+                    }
+                    Some(Item::Entity(e)) if *e == point => {}
+                    Some(_) => {
+                        return Err(ModelError::new(ModelErrorKind::Degenerate {
+                            id: id.to_owned(),
+                            field: None,
+                            what: format!(
+                                "\"{alias}\" names another item, not this segment's {part} point"
+                            ),
+                        }));
+                    }
+                }
+            }
+        }
         Ok(idx)
     }
 
@@ -382,6 +467,9 @@ impl SystemBuilder {
         geometry: Geometry,
         parts: &[&str],
     ) -> Result<EntityIdx, ModelError> {
+        if let Geometry::Arc { center, radius, .. } = geometry {
+            return self.arc(id, center, radius, None, None);
+        }
         let fields = geometry.kind().part_fields();
         let mut resolved = Vec::with_capacity(parts.len());
         for (field, part) in fields.iter().zip(parts) {
@@ -421,6 +509,50 @@ impl SystemBuilder {
         self.entity(id, Geometry::Circle { center, radius }, &[])
     }
 
+    /// Adds a circular arc (2D) and its end points `<id>.start` and `<id>.end`, held on its
+    /// circle by implicit `Incident` constraints (`<id>.start@<id>`, `<id>.end@<id>`). Without
+    /// a radius, the sketch radius is the distance from the centre to the start point (exactly
+    /// when it is rational, else to 17 significant digits).
+    pub fn arc(
+        &mut self,
+        id: &str,
+        center: Option<Coords>,
+        radius: Option<BigRational>,
+        start: Option<Coords>,
+        end: Option<Coords>,
+    ) -> Result<EntityIdx, ModelError> {
+        let radius = match (radius, &center, &start) {
+            (Some(r), _, _) => Some(r),
+            (None, Some(c), Some(s)) if c.len() == s.len() => {
+                let r2: BigRational = c.iter().zip(s).map(|(a, b)| (a - b) * (a - b)).sum();
+                crate::number::sqrt_rational(&r2)
+            }
+            (None, _, _) => None,
+        };
+        for (field, at) in [("start", &start), ("end", &end)] {
+            if let Some(at) = at {
+                crate::entity::check_coords(id, field, at, self.system.dim)?;
+            }
+        }
+        let first = self.system.entities.len() as u32;
+        let (start_idx, end_idx) = (EntityIdx(first + 1), EntityIdx(first + 2));
+        let geometry = Geometry::Arc { center, radius, start: start_idx, end: end_idx };
+        let arc = self.push_entity(id, geometry, &[])?;
+        for (part, at) in [("start", start), ("end", end)] {
+            let point = format!("{id}.{part}");
+            self.push_owned_entity(&point, Geometry::Point { at }, &[], Some(arc))?;
+            self.push_constraint(
+                ConstraintKind::Incident,
+                &format!("{point}@{id}"),
+                &[&point, id],
+                None,
+                Some(arc),
+            )?;
+        }
+        debug_assert_eq!(self.system.arc_points(arc), Some((start_idx, end_idx)));
+        Ok(arc)
+    }
+
     /// Adds a plane (3D), sketched by a point on it and a normal.
     pub fn plane(&mut self, id: &str, at: Option<[Coords; 2]>) -> Result<EntityIdx, ModelError> {
         self.entity(id, Geometry::Plane { at }, &[])
@@ -436,13 +568,37 @@ impl SystemBuilder {
         self.entity(id, Geometry::Sphere { center, radius }, &[])
     }
 
+    /// The entity `id` names. `<curve>.center` names the centre of a circle, arc or sphere: the
+    /// first time it is named, the centre becomes a point entity of that id, held at the centre
+    /// by an implicit `Concentric` constraint (`<curve>.center@<curve>`).
     fn resolve(
-        &self,
+        &mut self,
         item: &'static str,
         owner: &str,
         field: &'static str,
         id: &str,
     ) -> Result<EntityIdx, ModelError> {
+        if !self.system.ids.contains_key(id)
+            && let Some(curve) = id.strip_suffix(".center")
+            && let Some(Item::Entity(c)) = self.system.ids.get(curve).copied()
+        {
+            let (center, round) = match &self.system.entity(c).geometry {
+                Geometry::Circle { center, .. }
+                | Geometry::Sphere { center, .. }
+                | Geometry::Arc { center, .. } => (center.clone(), true),
+                _ => (None, false),
+            };
+            if round {
+                self.push_owned_entity(id, Geometry::Point { at: center }, &[], Some(c))?;
+                self.push_constraint(
+                    ConstraintKind::Concentric,
+                    &format!("{id}@{curve}"),
+                    &[id, curve],
+                    None,
+                    Some(c),
+                )?;
+            }
+        }
         match self.system.ids.get(id) {
             Some(Item::Entity(e)) => Ok(*e),
             Some(Item::Constraint(_)) => Err(ModelError::new(ModelErrorKind::NotAnEntity {
@@ -469,6 +625,17 @@ impl SystemBuilder {
         id: &str,
         args: &[&str],
         value: Option<BigRational>,
+    ) -> Result<ConstraintIdx, ModelError> {
+        self.push_constraint(kind, id, args, value, None)
+    }
+
+    fn push_constraint(
+        &mut self,
+        kind: ConstraintKind,
+        id: &str,
+        args: &[&str],
+        value: Option<BigRational>,
+        owner: Option<EntityIdx>,
     ) -> Result<ConstraintIdx, ModelError> {
         self.claim_id(id)?;
         let fields = kind.fields();
@@ -521,15 +688,20 @@ impl SystemBuilder {
                     dim: self.system.dim,
                 })
             })?;
-        // The DOC of `Fix` is the DOF it pins: the entity's, or its parts'.
+        // The DOC of `Fix` is the DOF it pins: the entity's, or its parts', and for an arc
+        // one more for each end point (its place along the circle).
         let doc = if let Signature::Fix(e) = signature {
-            if !self.system.has_position(e) {
+            let points = self.system.arc_points(e).map_or(Vec::new(), |(a, b)| vec![a, b]);
+            if !self.system.has_position(e) || !points.iter().all(|p| self.system.has_position(*p))
+            {
                 return Err(ModelError::new(ModelErrorKind::FixWithoutPosition {
                     id: id.to_owned(),
                     entity: args[0].to_string(),
                 }));
             }
-            self.system.base_entities(e).iter().map(|b| self.system.entity_dof(*b)).sum()
+            let along = if self.system.arc_points(e).is_some() { 2 } else { 0 };
+            self.system.base_entities(e).iter().map(|b| self.system.entity_dof(*b)).sum::<usize>()
+                + along
         } else {
             doc
         };
@@ -542,6 +714,7 @@ impl SystemBuilder {
             value,
             doc,
             position: None,
+            owner,
         });
         self.system.ids.insert(id.to_owned(), Item::Constraint(idx));
         Ok(idx)

@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use crate::entity::quote;
 use crate::number::format_exact;
-use crate::system::{EntityIdx, System};
+use crate::system::System;
 
 impl System {
     /// Writes the system in the RON model format. Reading the text back with
@@ -25,14 +25,15 @@ impl System {
         let _ = writeln!(out, "    name: {},", quote(self.name()));
         let _ = writeln!(out, "    dim: {},", self.dim().coords());
         let _ = writeln!(out, "    entities: [");
-        for e in self.entities() {
-            let name = |x: EntityIdx| self.entity(x).id.clone();
-            let body = e.geometry.to_ron(&e.id, &name);
+        // The named points of curves and the constraints holding them are the curves' own: they
+        // are written by their owners' fields.
+        for e in self.entities().iter().filter(|e| e.owner.is_none()) {
+            let body = e.geometry.to_ron(&e.id, self);
             let _ = writeln!(out, "        {body},");
         }
         let _ = writeln!(out, "    ],");
         let _ = writeln!(out, "    constraints: [");
-        for c in self.constraints() {
+        for c in self.constraints().iter().filter(|c| c.owner.is_none()) {
             let mut s = format!("{}(id: {}", c.kind.name(), quote(&c.id));
             for (field, arg) in c.kind.fields().iter().zip(&c.args) {
                 let _ = write!(s, ", {field}: {}", quote(&self.entity(*arg).id));

@@ -101,7 +101,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "unknown_variant.ron",
-            "unknown_variant.ron:3:16: RON syntax: Unexpected variant named `Pt` in enum `Entity`, expected one of `Point`, `Line`, `Segment`, `Circle`, `Plane`, or `Sphere` instead",
+            "unknown_variant.ron:3:16: RON syntax: Unexpected variant named `Pt` in enum `Entity`, expected one of `Point`, `Line`, `Segment`, `Circle`, `Plane`, `Sphere`, or `Arc` instead",
         ),
         (
             "constraint_unknown_field.ron",
@@ -109,7 +109,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "constraint_unknown_variant.ron",
-            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, or `Fix` instead",
+            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, `Fix`, `EqualRadius`, `DistanceX`, `DistanceY`, or `TangentAt` instead",
         ),
         (
             "constraint_missing_field.ron",

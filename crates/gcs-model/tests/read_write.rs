@@ -74,11 +74,19 @@ fn zoo_2d_doc_table() {
         ("r", 1),
         ("eq", 1),
         ("cc", 2),
+        ("er", 1),
+        ("dx", 1),
+        ("dy", 1),
+        ("ta", 1),
+        ("cp", 2),
+        ("symp", 2),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");
     }
-    assert_eq!(s.dof_sum(), 6 * 2 + 2 * 2 + 3 * 3);
+    // Points (the arc's two and the centre `arc.center` named by a constraint among them),
+    // lines, circles and the arc.
+    assert_eq!(s.dof_sum(), 10 * 2 + 2 * 2 + 3 * 3 + 3);
     // Every constraint kind exists in 2D, and the zoo has them all.
     let kinds: std::collections::BTreeSet<ConstraintKind> =
         s.constraints().iter().map(|c| c.kind).collect();
@@ -132,14 +140,17 @@ fn zoo_3d_doc_table() {
         ("tss", 1),
         ("r", 1),
         ("eq", 1),
+        ("cps", 3),
+        ("symp", 3),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");
     }
     let kinds: std::collections::BTreeSet<ConstraintKind> =
         s.constraints().iter().map(|c| c.kind).collect();
-    // All but the 2D-only kinds: Symmetric, Horizontal, Vertical, Concentric.
-    assert_eq!(kinds.len(), ConstraintKind::ALL.len() - 4);
+    // All but the 2D-only kinds: Horizontal, Vertical, EqualRadius, DistanceX, DistanceY,
+    // TangentAt.
+    assert_eq!(kinds.len(), ConstraintKind::ALL.len() - 6);
 }
 
 #[test]

@@ -306,8 +306,8 @@ impl Report {
             dim: system.dim().coords(),
             backend: a.backend.into(),
             witness: a.witness.source.into(),
-            entities: system.entities().len(),
-            constraints: system.constraints().len(),
+            entities: system.written_entities(),
+            constraints: system.written_constraints(),
             unknowns: a.unknowns,
             equations: a.equations,
             rank: a.rank,
@@ -369,8 +369,8 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
             "{file}: {} ({}, {} entities, {} constraints)",
             system.name(),
             system.dim(),
-            system.entities().len(),
-            system.constraints().len()
+            system.written_entities(),
+            system.written_constraints()
         ),
     );
     let verdict = match (a.rigid(), a.redundant.is_empty()) {

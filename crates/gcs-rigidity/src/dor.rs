@@ -267,9 +267,11 @@ impl Facts {
         // Points: coincidence classes.
         let mut pparent: Vec<u32> = (0..n as u32).collect();
         for c in system.constraints() {
-            // Circles and spheres count as their centres: concentric circles coincide.
-            if let Signature::CoincidentPoints(a, b) | Signature::ConcentricCircles(a, b) =
-                c.signature
+            // Circles and spheres count as their centres: concentric circles coincide, and a
+            // point at a centre is that centre.
+            if let Signature::CoincidentPoints(a, b)
+            | Signature::ConcentricCircles(a, b)
+            | Signature::CenterPoint { point: a, round: b } = c.signature
             {
                 let (ra, rb) = (plain_find(&mut pparent, a.0), plain_find(&mut pparent, b.0));
                 if ra != rb {
@@ -418,6 +420,7 @@ impl Facts {
                 // above).
                 S::CoincidentPoints(..)
                 | S::ConcentricCircles(..)
+                | S::CenterPoint { .. }
                 | S::Metric(Metric::DistancePointPoint(..))
                 | S::Metric(Metric::DistancePointLine { .. })
                 | S::Metric(Metric::DistancePointPlane { .. })
@@ -436,6 +439,12 @@ impl Facts {
                 | S::EqualLength(..)
                 | S::Midpoint { .. }
                 | S::Symmetric { .. }
+                | S::SymmetricAboutPoint { .. }
+                | S::EqualRadius(..)
+                | S::TangentAtLineCircle { .. }
+                | S::TangentAtCircleCircle { .. }
+                | S::Metric(Metric::DistanceX(..))
+                | S::Metric(Metric::DistanceY(..))
                 | S::Fix(_) => {}
             }
         }

@@ -33,7 +33,8 @@ fn sketch_points(geometry: &Geometry) -> Option<&[Vec<BigRational>; 2]> {
         | Geometry::Segment { .. }
         | Geometry::Circle { .. }
         | Geometry::Plane { .. }
-        | Geometry::Sphere { .. } => None,
+        | Geometry::Sphere { .. }
+        | Geometry::Arc { .. } => None,
     }
 }
 
@@ -50,7 +51,7 @@ impl Representation for Line2 {
 
     /// The point of the line nearest the origin, `−c (a, b) / (a² + b²)`, and that point moved
     /// along the line by `(−b, a)`.
-    fn to_sketch(x: &[BigRational]) -> Geometry {
+    fn to_sketch(x: &[BigRational], _like: &Geometry) -> Geometry {
         let (a, b, c) = (&x[0], &x[1], &x[2]);
         let Some(inv) = Field::inv(&(a * a + b * b)) else { return Geometry::Line { at: None } };
         let s = -(c * inv);
@@ -108,7 +109,7 @@ impl Representation for Line3 {
     }
 
     /// The point of the line nearest the origin, `d × m / |d|²`, and that point plus `d`.
-    fn to_sketch(x: &[BigRational]) -> Geometry {
+    fn to_sketch(x: &[BigRational], _like: &Geometry) -> Geometry {
         let (d, m) = (&x[0..3], &x[3..6]);
         let dd = d.iter().fold(<BigRational as Field>::zero(), |acc, v| acc + v * v);
         let Some(inv) = Field::inv(&dd) else { return Geometry::Line { at: None } };

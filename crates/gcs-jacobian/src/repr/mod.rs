@@ -64,7 +64,8 @@ pub(crate) trait Representation {
 
     /// Coordinates back to sketch fields: the inverse of [`Representation::from_sketch`] up to
     /// the scale of homogeneous coordinates (a line is given back by two of its points).
-    fn to_sketch(x: &[BigRational]) -> Geometry;
+    /// `like` is the entity's geometry, whose references (an arc's end points) are kept.
+    fn to_sketch(x: &[BigRational], like: &Geometry) -> Geometry;
 
     /// The velocity of coordinates `x` under displacement generator `g` (before the projection
     /// that keeps homogeneous coordinates on their normalisation).
@@ -189,7 +190,7 @@ impl Repr {
             (EntityKind::Point, Dim::Three) => Some(Repr::Point3),
             (EntityKind::Line, Dim::Two) => Some(Repr::Line2),
             (EntityKind::Line, Dim::Three) => Some(Repr::Line3),
-            (EntityKind::Circle, _) => Some(Repr::Circle),
+            (EntityKind::Circle | EntityKind::Arc, _) => Some(Repr::Circle),
             (EntityKind::Plane, _) => Some(Repr::Plane),
             (EntityKind::Sphere, _) => Some(Repr::Sphere),
             (EntityKind::Segment, _) => None,
@@ -228,8 +229,8 @@ impl Repr {
 
     /// Coordinates back to sketch fields (a line by two of its points, a plane by a point and
     /// its normal), for writing a configuration as a model.
-    pub fn to_sketch(self, x: &[BigRational]) -> Geometry {
-        dispatch!(self, R => R::to_sketch(x))
+    pub fn to_sketch(self, x: &[BigRational], like: &Geometry) -> Geometry {
+        dispatch!(self, R => R::to_sketch(x, like))
     }
 
     /// The velocity of coordinates `x` under displacement generator `g`, tangent to the
@@ -356,7 +357,7 @@ mod tests {
         for (repr, geometry) in samples {
             let x = repr.from_sketch(&geometry).unwrap();
             assert_eq!(x.len(), repr.coords());
-            let back = repr.from_sketch(&repr.to_sketch(&x)).unwrap();
+            let back = repr.from_sketch(&repr.to_sketch(&x, &geometry)).unwrap();
             if repr.homogeneous() {
                 // back = λ x
                 let k = x.iter().position(|v| !Field::is_zero(v)).unwrap();

@@ -33,12 +33,13 @@ impl Representation for Plane {
             | Geometry::Line { .. }
             | Geometry::Segment { .. }
             | Geometry::Circle { .. }
-            | Geometry::Sphere { .. } => None,
+            | Geometry::Sphere { .. }
+            | Geometry::Arc { .. } => None,
         }
     }
 
     /// The point of the plane nearest the origin, `−δ n / |n|²`, and the normal.
-    fn to_sketch(x: &[BigRational]) -> Geometry {
+    fn to_sketch(x: &[BigRational], _like: &Geometry) -> Geometry {
         let n = x[0..3].to_vec();
         let nn = n.iter().fold(<BigRational as Field>::zero(), |acc, v| acc + v * v);
         let Some(inv) = Field::inv(&nn) else { return Geometry::Plane { at: None } };

@@ -22,11 +22,12 @@ impl<const N: usize> Representation for Point<N> {
             | Geometry::Segment { .. }
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
-            | Geometry::Sphere { .. } => None,
+            | Geometry::Sphere { .. }
+            | Geometry::Arc { .. } => None,
         }
     }
 
-    fn to_sketch(x: &[BigRational]) -> Geometry {
+    fn to_sketch(x: &[BigRational], _like: &Geometry) -> Geometry {
         Geometry::Point { at: Some(x.to_vec()) }
     }
 

@@ -1,4 +1,5 @@
-//! Circles (2D) and spheres (3D): a centre and a radius, both unknown.
+//! Circles and arcs (2D) and spheres (3D): a centre and a radius, both unknown (an arc's end
+//! points are point entities of their own).
 
 use gcs_model::Geometry;
 use gcs_rank::{BigRational, Field};
@@ -17,7 +18,9 @@ impl<const N: usize> Representation for Round<N> {
 
     fn from_sketch(geometry: &Geometry) -> Option<Vec<BigRational>> {
         match geometry {
-            Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
+            Geometry::Circle { center, radius }
+            | Geometry::Sphere { center, radius }
+            | Geometry::Arc { center, radius, .. } => {
                 let mut c = center.clone()?;
                 c.push(radius.clone()?);
                 Some(c)
@@ -29,9 +32,13 @@ impl<const N: usize> Representation for Round<N> {
         }
     }
 
-    fn to_sketch(x: &[BigRational]) -> Geometry {
+    /// An arc keeps its end points (entities of their own).
+    fn to_sketch(x: &[BigRational], like: &Geometry) -> Geometry {
         let center = Some(x[..N].to_vec());
         let radius = x.get(N).cloned();
+        if let Geometry::Arc { start, end, .. } = *like {
+            return Geometry::Arc { center, radius, start, end };
+        }
         if N == 2 {
             Geometry::Circle { center, radius }
         } else {
