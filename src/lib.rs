@@ -141,6 +141,20 @@ pub fn fixed_entities(system: &System) -> Vec<bool> {
     fixed
 }
 
+/// Models whose generated witness cannot be constructed (they are analysed at their sketch
+/// only): the constructive placement places one entity at a time, and a closed loop of
+/// parameter-free constraints whose closing condition falls on an earlier free choice defeats
+/// it. The fillet: its arc's end is placed anywhere on its circle before the vertical side that
+/// must be tangent there. A known limit of the placement (README, "Limits, honestly"); the
+/// tests assert that these models are refused, so that the day the limit is lifted this list
+/// shrinks.
+pub const NO_GENERATED_WITNESS: &[&str] = &["data/sketches/fillet.ron"];
+
+/// Every model of [`data_files`] that has a generated witness (not in [`NO_GENERATED_WITNESS`]).
+pub fn generated_witness_files() -> Vec<String> {
+    data_files().into_iter().filter(|f| !NO_GENERATED_WITNESS.contains(&f.as_str())).collect()
+}
+
 /// The system without the sketch positions of every entity not pinned by a `Fix`, so that
 /// the witness analysis has to generate a witness.
 pub fn strip_unfixed_sketch(system: &System) -> System {

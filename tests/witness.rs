@@ -9,7 +9,9 @@ mod common;
 use common::{Verdict, run, try_run};
 use gcs_analysis::Backend;
 use gcs_jacobian::WitnessSource;
-use gcs_suite::{data_files, fixed_entities, load, rebuild, strip_unfixed_sketch};
+use gcs_suite::{
+    data_files, fixed_entities, generated_witness_files, load, rebuild, strip_unfixed_sketch,
+};
 
 #[test]
 fn rebuilding_with_every_sketch_changes_nothing() {
@@ -25,7 +27,7 @@ fn rebuilding_with_every_sketch_changes_nothing() {
 #[test]
 fn generated_witness_agrees_with_the_sketch() {
     let mut failures = Vec::new();
-    for file in data_files() {
+    for file in generated_witness_files() {
         let s = load(&file);
         let at_sketch = run(&s, Backend::Exact, 1);
         // The sketch is a witness, except for the singular positions drawn on purpose, which
@@ -84,7 +86,7 @@ fn stripped_models_keep_only_fixed_positions() {
 #[test]
 fn same_system_backend_and_seed_give_identical_results() {
     let mut failures = Vec::new();
-    for file in data_files() {
+    for file in generated_witness_files() {
         let s = load(&file);
         let stripped = strip_unfixed_sketch(&s);
         for backend in [Backend::Exact, Backend::ModP, Backend::Float { tolerance: 1e-9 }] {
@@ -108,7 +110,7 @@ fn same_system_backend_and_seed_give_identical_results() {
 #[test]
 fn different_seeds_give_the_same_verdicts() {
     let mut moved = 0;
-    for file in data_files() {
+    for file in generated_witness_files() {
         let s = strip_unfixed_sketch(&load(&file));
         let first = run(&s, Backend::ModP, 1);
         let reference = Verdict::of(&s, &first);
@@ -121,4 +123,19 @@ fn different_seeds_give_the_same_verdicts() {
     }
     // Not vacuous: the seed does change the generated witness.
     assert!(moved > 0, "no seed changed any witness");
+}
+
+/// The models of `NO_GENERATED_WITNESS` are refused by the exact backends without their
+/// sketch, and analysed at it: the list is a known limit, not a hiding place.
+#[test]
+fn models_without_a_generated_witness_are_refused_and_analysed_at_their_sketch() {
+    for file in gcs_suite::NO_GENERATED_WITNESS {
+        let s = load(file);
+        let at_sketch = run(&s, Backend::Exact, 1);
+        assert_eq!(at_sketch.witness.source, WitnessSource::Sketch, "{file}");
+        for backend in [Backend::Exact, Backend::ModP] {
+            let e = try_run(&strip_unfixed_sketch(&s), backend, 1).err();
+            assert!(e.is_some_and(|e| e.contains("no exact witness")), "{file} has one now");
+        }
+    }
 }

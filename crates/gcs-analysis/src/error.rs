@@ -20,11 +20,11 @@ pub enum AnalysisError {
         "no exact witness ({0}); a numerical projection of the sketch found an approximate one, which only the float backend analyses"
     )]
     ApproximateWitness(gcs_jacobian::NoWitness),
-    /// The prime-field backends: no exact witness, and no modular one either (the square roots
-    /// its construction needs were non-residues modulo the prime in every attempt); only the
-    /// float backend's approximate witness exists.
+    /// The prime-field backends: no exact witness, and no modular one either (the same
+    /// construction failed modulo the prime in every attempt); only the float backend's
+    /// approximate witness exists.
     #[error(
-        "no exact witness ({0}), nor a modular one (the square roots its construction needs had none modulo the prime in every attempt); a numerical projection of the sketch found an approximate one, which only the float backend analyses"
+        "no exact witness ({0}), nor a modular one (the construction failed modulo the prime too, in every attempt); a numerical projection of the sketch found an approximate one, which only the float backend analyses"
     )]
     NoModularWitness(gcs_jacobian::NoWitness),
     /// The backend was not compiled in.
