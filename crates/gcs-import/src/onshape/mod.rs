@@ -1,11 +1,200 @@
-//! Reader: not yet written.
+//! Reader of Onshape sketch features as JSON, the raw form SketchGraphs distributes: a list of
+//! features (or one feature object, or an object with a `features` list), each sketch a
+//! `newSketch` feature (`BTMSketch`) with `entities` and `constraints`.
+//!
+//! # Sketches
+//! Every `newSketch` feature becomes one [`ir::Sketch`] named `<file stem>/<index>`, the index
+//! counting the file's sketch features from 0; its label is the feature's `name`. Other features
+//! (extrudes, planes) are not sketches and are passed over.
+//!
+//! # Entities
+//! Onshape stores metres and radians; coordinates are the shortest decimals of the file's doubles
+//! times 1000, exactly. Ids are Onshape's `entityId`s.
+//!
+//! | Onshape | neutral sketch |
+//! |---|---|
+//! | `BTMSketchPoint` | `Point` |
+//! | `BTMSketchCurveSegment` + `BTCurveGeometryLine` | `Segment` from `pnt + startParam·dir` to `pnt + endParam·dir`; a `Point` (at the start) when the parameter range is ≤ 1e-12 m (a zero-length line; its `.start` and `.end` are the point) |
+//! | `BTMSketchCurve` + `BTCurveGeometryLine` | `Line` (unbounded) |
+//! | `BTMSketchCurve` + `BTCurveGeometryCircle` | `Circle` |
+//! | `BTMSketchCurveSegment` + `BTCurveGeometryCircle` | `Arc`: the point at parameter t is `c + r(cos t·u + s·sin t·u⊥)`, u = (xDir, yDir), s = −1 when `clockwise`; a clockwise arc has its ends swapped (Onshape's `.start` is the neutral `End`) |
+//! | `BTCurveGeometryEllipse` (curve / segment) | `Ellipse` / `EllipticalArc` (same parametrisation with the two radii; ends swapped when clockwise) |
+//! | `BTCurveGeometrySpline` (not periodic, not rational, not trimmed) | `BSpline` (poles in mm, knots as given) |
+//! | interpolated splines, periodic, rational or trimmed splines, text and image boxes, conics | skipped, with the reason |
+//!
+//! SketchGraphs' files carry no external geometry: references outside the sketch (the origin,
+//! model edges) are queries whose ids the dataset stripped, so no entity is `external`.
+//!
+//! # Constraints
+//! References are `<entity id>` (the entity) or `<entity id>.start`, `.end`, `.center` (its
+//! named points); a point id an entity declares (`startPointId`…) is accepted too. The
+//! parameters `localFirst`/`localSecond` (or the older `local0`, `local1`, …) give the order.
+//! Dimension values are the quantity expressions (`15 mm`, `(1/8)*inch`, `45 deg`) evaluated
+//! exactly, in mm and degrees (the files' numeric `value` fields are all 0); a `driven`
+//! dimension is non-driving, without a value when the file has none.
+//!
+//! | `constraintType` | references | neutral sketch |
+//! |---|---|---|
+//! | COINCIDENT | point, point / point, curve / line, line / circle, circle | `Coincident` / `PointOnObject` / `Collinear` / `Concentric` + `Equal` (id `<id>#equal`) |
+//! | HORIZONTAL, VERTICAL | line / point, point | `Horizontal`, `Vertical` |
+//! | PARALLEL, PERPENDICULAR | line, line | `Parallel`, `Perpendicular` |
+//! | TANGENT | two curves, not both lines | `Tangent` |
+//! | NORMAL | line, circle / line, line | `PointOnObject` (the centre on the line) / `Perpendicular` |
+//! | EQUAL | two lines / two circles or arcs | `Equal` |
+//! | CONCENTRIC | circles, arcs / ellipses / a point and a circle | `Concentric` / `Coincident` of the centres / `Coincident` with the centre |
+//! | MIDPOINT | point, line or arc / midpoint, point, point | `Midpoint` / `Symmetric` about the midpoint |
+//! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) |
+//! | DISTANCE (direction MINIMUM) | point–point, point–line, line–line, point–circle, circle–circle | `Distance` |
+//! | DISTANCE (HORIZONTAL, VERTICAL) | point, point | `DistanceX`, `DistanceY`, signed as the drawing shows |
+//! | LENGTH | line | `Length` (or `DistanceX`/`DistanceY` with a direction) |
+//! | RADIUS, DIAMETER | circle or arc | `Radius`, `Diameter` |
+//! | ANGLE | line, line | `Angle`: of `±value + k·180°`, the oriented angle nearest the drawing |
+//! | FIX | any | `Fix` |
+//! | CENTERLINE_DIMENSION | centreline, point or line | `Distance` of half the value |
+//! | PROJECTED (USE, USE_END, USE_START) | a sketch entity or point and model geometry | `Fix` of the sketch entity (it is drawn on the projection) |
+//!
+//! Skipped, with the reason: OFFSET, CIRCULAR_PATTERN, LINEAR_PATTERN, silhouette projections,
+//! other types; mirrored lines (the neutral `Symmetric` takes points); a line–circle distance;
+//! anything with a reference to external geometry ("reference to external geometry without its
+//! geometry in the file"); a reference to a skipped entity or to an unknown id; a zero-length
+//! line used as a line; a driving dimension whose expression cannot be evaluated (variables).
+//! A second entity or constraint with an id already taken is skipped too. Not read: the angle
+//! dimension's `aligned`/`clockwise`/`flipped` flags (the drawing orients it) and the distances'
+//! `halfSpace` options: Onshape may measure a point–circle distance to the far side of the
+//! circle, which the neutral `Distance` does not distinguish.
+//!
+//! # Errors
+//! Input that is not JSON, or JSON not of this shape (a feature that is not an object, an entity
+//! without its id or coordinates, a constraint without its type), is an [`ImportError`] naming
+//! the element (`features[3].entities[2] (id …)`). Never panics, never prints.
+
+mod constraints;
+mod entities;
+mod expr;
+mod json;
+
+use serde_json::Value;
 
 use crate::{ImportError, ir};
+use constraints::Outcome;
+use entities::{Read, Table};
 
 /// Reads every sketch of the file.
 ///
 /// # Errors
 /// See [`crate::read`].
-pub fn read(file: &str, _bytes: &[u8]) -> Result<Vec<ir::Sketch>, ImportError> {
-    Err(ImportError::new(file, "this format's reader is not written yet"))
+pub fn read(file: &str, bytes: &[u8]) -> Result<Vec<ir::Sketch>, ImportError> {
+    let value: Value = serde_json::from_slice(bytes)
+        .map_err(|e| ImportError::new(file, format!("not JSON: {e}")).at_line(e.line()))?;
+    let features: Vec<(String, &Value)> = match &value {
+        Value::Array(list) => {
+            list.iter().enumerate().map(|(i, f)| (format!("features[{i}]"), f)).collect()
+        }
+        Value::Object(map) => match map.get("features") {
+            Some(Value::Array(list)) => {
+                list.iter().enumerate().map(|(i, f)| (format!("features[{i}]"), f)).collect()
+            }
+            _ => vec![("feature".to_owned(), &value)],
+        },
+        other => {
+            return Err(ImportError::new(
+                file,
+                format!(
+                    "expected a list of Onshape features or a feature object, found {}",
+                    json::kind(other)
+                ),
+            ));
+        }
+    };
+    let stem = crate::file_stem(file);
+    let mut sketches = Vec::new();
+    for (path, feature) in features {
+        let at = |message: String| ImportError::new(file, message).in_element(path.clone());
+        let mut map = json::object(feature, "feature").map_err(at)?;
+        // The API's wrapped form: `{"type": 151, "typeName": "BTMSketch", "message": {...}}`.
+        if let Some(Value::Object(inner)) = map.get("message")
+            && (inner.contains_key("featureType")
+                || map.get("typeName").and_then(Value::as_str) == Some("BTMSketch"))
+        {
+            map = inner;
+        }
+        let feature_type = json::string(map, "featureType").map_err(at)?;
+        if feature_type != "newSketch" {
+            continue;
+        }
+        let name = format!("{stem}/{}", sketches.len());
+        sketches.push(read_sketch(file, &path, map, name)?);
+    }
+    Ok(sketches)
+}
+
+fn read_sketch(
+    file: &str,
+    path: &str,
+    map: &json::Object,
+    name: String,
+) -> Result<ir::Sketch, ImportError> {
+    let at = |element: String| {
+        move |message: String| ImportError::new(file, message).in_element(element)
+    };
+    let label = json::opt_string(map, "name").map_err(at(path.to_owned()))?.map(str::to_owned);
+    let mut sketch = ir::Sketch {
+        name,
+        label,
+        dim: 2,
+        entities: Vec::new(),
+        constraints: Vec::new(),
+        skipped: Vec::new(),
+        source_verdict: Vec::new(),
+    };
+    let mut table = Table::default();
+    for (j, element) in
+        json::array(map, "entities").map_err(at(path.to_owned()))?.iter().enumerate()
+    {
+        let element_path = format!("{path}.entities[{j}]");
+        let entity = json::object(element, "entity").map_err(at(element_path.clone()))?;
+        let type_name = json::string(entity, "typeName").map_err(at(element_path.clone()))?;
+        let msg = json::field_object(entity, "message").map_err(at(element_path.clone()))?;
+        let id = json::string(msg, "entityId").map_err(at(element_path.clone()))?;
+        let in_entity = at(format!("{element_path} (id {id})"));
+        if table.contains(id) {
+            sketch.skipped.push(ir::Skipped {
+                item: id.to_owned(),
+                reason: format!("a second entity with the id `{id}` ({element_path})"),
+            });
+            continue;
+        }
+        match entities::read(type_name, msg, id).map_err(in_entity)? {
+            Read::Entity(entity, shape) => {
+                table.add(id, shape, sketch.entities.len(), msg);
+                sketch.entities.push(entity);
+            }
+            Read::Skip(reason) => {
+                table.add_skipped(id, &reason);
+                sketch.skipped.push(ir::Skipped { item: id.to_owned(), reason });
+            }
+        }
+    }
+    let mut ids = std::collections::HashSet::new();
+    for (j, element) in
+        json::array(map, "constraints").map_err(at(path.to_owned()))?.iter().enumerate()
+    {
+        let element_path = format!("{path}.constraints[{j}]");
+        let constraint = json::object(element, "constraint").map_err(at(element_path.clone()))?;
+        let msg = json::field_object(constraint, "message").map_err(at(element_path.clone()))?;
+        let id = json::string(msg, "entityId").map_err(at(element_path.clone()))?;
+        let in_constraint = at(format!("{element_path} (id {id})"));
+        if !ids.insert(id.to_owned()) {
+            sketch.skipped.push(ir::Skipped {
+                item: id.to_owned(),
+                reason: format!("a second constraint with the id `{id}` ({element_path})"),
+            });
+            continue;
+        }
+        match constraints::read(msg, id, &table, &sketch.entities).map_err(in_constraint)? {
+            Outcome::Constraints(list) => sketch.constraints.extend(list),
+            Outcome::Skip(skipped) => sketch.skipped.push(skipped),
+        }
+    }
+    Ok(sketch)
 }

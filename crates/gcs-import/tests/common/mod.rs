@@ -10,6 +10,7 @@
 use std::path::{Path, PathBuf};
 
 /// The corpus directory, or `None` (after saying so) when it is absent outside CI.
+#[allow(clippy::print_stderr)] // a test binary telling why it skipped
 pub fn external() -> Option<PathBuf> {
     let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let candidates = std::env::var_os("GCS_EXTERNAL_DATA")

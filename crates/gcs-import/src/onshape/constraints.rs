@@ -1,0 +1,586 @@
+//! Sketch constraints (`BTMSketchConstraint`): their parameters (references, quantities,
+//! options) and their translation into the neutral vocabulary.
+
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+use super::entities::{Shape, Table, Target};
+use super::expr::{self, Measure};
+use super::json::{self, Object};
+use crate::ir::{self, Constraint, Geometry, Kind, Number, Part, Ref, Skipped};
+
+/// What became of a constraint element: neutral constraints (usually one), or a skipped item.
+pub(super) enum Outcome {
+    /// The constraints it translates to.
+    Constraints(Vec<Constraint>),
+    /// Why it cannot be expressed.
+    Skip(Skipped),
+}
+
+/// A reference parameter.
+struct RefParam<'a> {
+    /// Its `parameterId` (`localFirst`, `externalSecond`, `localMirror`, `local0`, …).
+    role: &'a str,
+    /// The referenced id, `None` for an external reference (a query into the part studio).
+    local: Option<&'a str>,
+}
+
+/// The parameters of a constraint, by kind.
+#[derive(Default)]
+struct Params<'a> {
+    refs: Vec<RefParam<'a>>,
+    quantities: Vec<(&'a str, &'a str)>,
+    enums: Vec<(&'a str, &'a str)>,
+    flags: Vec<(&'a str, bool)>,
+}
+
+impl<'a> Params<'a> {
+    fn read(msg: &'a Object) -> Result<Params<'a>, String> {
+        let mut params = Params::default();
+        for (k, p) in json::array(msg, "parameters")?.iter().enumerate() {
+            let at = |e: String| format!("parameters[{k}]: {e}");
+            let p = json::object(p, "parameter").map_err(at)?;
+            let type_name = json::string(p, "typeName").map_err(at)?;
+            let m = json::field_object(p, "message").map_err(at)?;
+            let role = json::string(m, "parameterId").map_err(at)?;
+            match type_name {
+                "BTMParameterString" if role.starts_with("local") => {
+                    params.refs.push(RefParam {
+                        role,
+                        local: Some(json::string(m, "value").map_err(at)?),
+                    });
+                }
+                "BTMParameterString" | "BTMParameterQueryList" if role.starts_with("external") => {
+                    params.refs.push(RefParam { role, local: None });
+                }
+                "BTMParameterQuantity" => {
+                    if let Some(e) = json::opt_string(m, "expression").map_err(at)? {
+                        params.quantities.push((role, e));
+                    }
+                }
+                "BTMParameterEnum" => {
+                    if let Some(v) = json::opt_string(m, "value").map_err(at)? {
+                        params.enums.push((role, v));
+                    }
+                }
+                "BTMParameterBoolean" => {
+                    params.flags.push((role, json::flag(m, "value").map_err(at)?))
+                }
+                _ => {}
+            }
+        }
+        // Order the references: first, second, … whatever order the file lists them in.
+        params.refs.sort_by_key(|r| rank(r.role));
+        Ok(params)
+    }
+
+    fn quantity(&self, role: &str) -> Option<&'a str> {
+        self.quantities.iter().find(|(r, _)| *r == role).map(|&(_, e)| e)
+    }
+
+    fn option(&self, role: &str) -> Option<&'a str> {
+        self.enums.iter().find(|(r, _)| *r == role).map(|&(_, v)| v)
+    }
+
+    fn flag(&self, role: &str) -> bool {
+        self.flags.iter().any(|&(r, v)| r == role && v)
+    }
+}
+
+/// The position of a reference parameter among the constraint's references.
+fn rank(role: &str) -> u32 {
+    if role.contains("Midpoint") {
+        return 0;
+    }
+    if role.contains("First") || role.ends_with("Entity1") {
+        return 1;
+    }
+    if role.contains("Second") || role.ends_with("Entity2") {
+        return 2;
+    }
+    if role.contains("Mirror") {
+        return 90;
+    }
+    let digits = role.trim_start_matches(|c: char| !c.is_ascii_digit());
+    digits.parse::<u32>().map_or(50, |d| 1 + d.min(40))
+}
+
+/// A resolved reference.
+#[derive(Clone)]
+struct Arg {
+    r: Ref,
+    shape: Shape,
+}
+
+impl Arg {
+    fn is_point(&self) -> bool {
+        self.shape == Shape::Point
+    }
+    fn is_line(&self) -> bool {
+        matches!(self.shape, Shape::Segment | Shape::Line)
+    }
+    fn is_segment(&self) -> bool {
+        self.shape == Shape::Segment
+    }
+    fn is_round(&self) -> bool {
+        matches!(self.shape, Shape::Circle | Shape::Arc { .. })
+    }
+    fn has_center(&self) -> bool {
+        matches!(
+            self.shape,
+            Shape::Circle | Shape::Arc { .. } | Shape::Ellipse | Shape::EllipticalArc { .. }
+        )
+    }
+    fn is_curve(&self) -> bool {
+        matches!(
+            self.shape,
+            Shape::Segment
+                | Shape::Line
+                | Shape::Circle
+                | Shape::Arc { .. }
+                | Shape::Ellipse
+                | Shape::EllipticalArc { .. }
+                | Shape::Spline
+        )
+    }
+    fn center(&self) -> Ref {
+        Ref::part(self.r.entity.clone(), Part::Center)
+    }
+}
+
+fn describe(shape: Shape) -> &'static str {
+    match shape {
+        Shape::Point => "point",
+        Shape::ZeroLine => "zero-length line",
+        Shape::Segment => "line",
+        Shape::Line => "unbounded line",
+        Shape::Circle => "circle",
+        Shape::Arc { .. } => "arc",
+        Shape::Ellipse => "ellipse",
+        Shape::EllipticalArc { .. } => "elliptical arc",
+        Shape::Spline => "spline",
+    }
+}
+
+/// The constraint types this reader knows; others are skipped as unsupported.
+const KNOWN: &[&str] = &[
+    "COINCIDENT",
+    "HORIZONTAL",
+    "VERTICAL",
+    "PARALLEL",
+    "PERPENDICULAR",
+    "TANGENT",
+    "NORMAL",
+    "EQUAL",
+    "CONCENTRIC",
+    "MIDPOINT",
+    "MIRROR",
+    "SYMMETRIC",
+    "DISTANCE",
+    "LENGTH",
+    "RADIUS",
+    "DIAMETER",
+    "ANGLE",
+    "FIX",
+    "CENTERLINE_DIMENSION",
+    "PROJECTED",
+];
+
+/// The reason given when a constraint needs external geometry (normative wording).
+const EXTERNAL: &str = "reference to external geometry without its geometry in the file";
+
+/// Translates one constraint whose `message` is `msg` and whose id is `id`.
+pub(super) fn read(
+    msg: &Object,
+    id: &str,
+    table: &Table,
+    entities: &[ir::Entity],
+) -> Result<Outcome, String> {
+    let ctype = json::string(msg, "constraintType")?;
+    let params = Params::read(msg)?;
+    let skip = |reason: String| {
+        Ok(Outcome::Skip(Skipped { item: id.to_owned(), reason: format!("{ctype}: {reason}") }))
+    };
+    match ctype {
+        "OFFSET" => {
+            return skip(
+                "offset curves (a curve at a distance from another) are not expressible".into(),
+            );
+        }
+        "CIRCULAR_PATTERN" | "LINEAR_PATTERN" => {
+            return skip("a pattern (copies placed by a rotation or a translation, with counts) is not expressible".into());
+        }
+        _ if !KNOWN.contains(&ctype) => {
+            return skip("this constraint type is not supported".into());
+        }
+        _ => {}
+    }
+    // PROJECTED ties a sketch entity to model geometry projected onto the sketch plane: the
+    // entity is where the file draws it, fixed.
+    let projected = ctype == "PROJECTED";
+    if projected {
+        let how = params.option("projectionType").unwrap_or("USE");
+        if !matches!(how, "USE" | "USE_START" | "USE_END") {
+            return skip(format!(
+                "projection of type {how} (onto a silhouette of model geometry) is not expressible"
+            ));
+        }
+    } else if let Some(external) = params.refs.iter().find(|r| r.local.is_none()) {
+        return skip(format!("{EXTERNAL} ({})", external.role));
+    }
+    let mut args = Vec::new();
+    let mut axis = None;
+    for p in &params.refs {
+        let Some(local) = p.local else { continue };
+        let arg = match table.resolve(local) {
+            Target::Found(r, shape) => Arg { r, shape },
+            Target::Unusable(why) => return skip(why),
+        };
+        if p.role.contains("Mirror") {
+            axis = Some(arg);
+        } else {
+            // `localMidpoint` ranks first.
+            args.push(arg);
+        }
+    }
+    if let Some(zero) = args.iter().chain(&axis).find(|a| a.shape == Shape::ZeroLine)
+        && !matches!(ctype, "FIX" | "PROJECTED")
+    {
+        return skip(format!(
+            "the line `{}` has zero length and is read as a point; a constraint on it as a line is not expressible",
+            zero.r.entity
+        ));
+    }
+    let driving = !params.flag("driven");
+    let value = |role: &str, measure: Measure| -> Result<Option<Number>, String> {
+        match params.quantity(role) {
+            Some(text) => match expr::evaluate(text, measure) {
+                Ok(v) => Ok(Some(v)),
+                Err(_) if !driving => Ok(None),
+                Err(why) => Err(why),
+            },
+            None if !driving => Ok(None),
+            None => Err(format!("the dimension's `{role}` is not in the file")),
+        }
+    };
+    let one = |kind: Kind, refs: Vec<Ref>| Constraint {
+        id: id.to_owned(),
+        kind,
+        refs,
+        value: None,
+        driving: true,
+    };
+    let with = |kind: Kind, refs: Vec<Ref>, value: Option<Number>| Constraint {
+        id: id.to_owned(),
+        kind,
+        refs,
+        value,
+        driving,
+    };
+    let second = |suffix: &str, kind: Kind, refs: Vec<Ref>| Constraint {
+        id: format!("{id}#{suffix}"),
+        kind,
+        refs,
+        value: None,
+        driving: true,
+    };
+    let shapes = || {
+        let mut all: Vec<&str> = args.iter().chain(&axis).map(|a| describe(a.shape)).collect();
+        if all.is_empty() {
+            all.push("nothing");
+        }
+        all.join(", ")
+    };
+    let unexpressible = || skip(format!("between {} is not expressible", shapes()));
+    let drawing = Drawing { table, entities };
+
+    let out = match (ctype, args.as_slice()) {
+        ("COINCIDENT", [a, b]) if a.is_point() && b.is_point() => {
+            vec![one(Kind::Coincident, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("COINCIDENT", [a, b]) if a.is_point() && b.is_curve() => {
+            vec![one(Kind::PointOnObject, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("COINCIDENT", [a, b]) if a.is_curve() && b.is_point() => {
+            vec![one(Kind::PointOnObject, vec![b.r.clone(), a.r.clone()])]
+        }
+        ("COINCIDENT", [a, b]) if a.is_line() && b.is_line() => {
+            vec![one(Kind::Collinear, vec![a.r.clone(), b.r.clone()])]
+        }
+        // Two circles made to coincide are one circle: same centre, same radius.
+        ("COINCIDENT", [a, b]) if a.is_round() && b.is_round() => vec![
+            one(Kind::Concentric, vec![a.r.clone(), b.r.clone()]),
+            second("equal", Kind::Equal, vec![a.r.clone(), b.r.clone()]),
+        ],
+        ("HORIZONTAL" | "VERTICAL", [a]) if a.is_line() => {
+            vec![one(level(ctype), vec![a.r.clone()])]
+        }
+        ("HORIZONTAL" | "VERTICAL", [a, b]) if a.is_point() && b.is_point() => {
+            vec![one(level(ctype), vec![a.r.clone(), b.r.clone()])]
+        }
+        ("PARALLEL", [a, b]) if a.is_line() && b.is_line() => {
+            vec![one(Kind::Parallel, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("PERPENDICULAR", [a, b]) if a.is_line() && b.is_line() => {
+            vec![one(Kind::Perpendicular, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("TANGENT", [a, b]) if a.is_curve() && b.is_curve() && !(a.is_line() && b.is_line()) => {
+            vec![one(Kind::Tangent, vec![a.r.clone(), b.r.clone()])]
+        }
+        // A line normal to a circle passes through its centre.
+        ("NORMAL", [a, b]) if a.is_line() && b.is_round() => {
+            vec![one(Kind::PointOnObject, vec![b.center(), a.r.clone()])]
+        }
+        ("NORMAL", [a, b]) if a.is_round() && b.is_line() => {
+            vec![one(Kind::PointOnObject, vec![a.center(), b.r.clone()])]
+        }
+        ("NORMAL", [a, b]) if a.is_line() && b.is_line() => {
+            vec![one(Kind::Perpendicular, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("EQUAL", [a, b])
+            if (a.is_segment() && b.is_segment()) || (a.is_round() && b.is_round()) =>
+        {
+            vec![one(Kind::Equal, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("CONCENTRIC", [a, b]) if a.is_round() && b.is_round() => {
+            vec![one(Kind::Concentric, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("CONCENTRIC", [a, b]) if a.has_center() && b.has_center() => {
+            vec![one(Kind::Coincident, vec![a.center(), b.center()])]
+        }
+        ("CONCENTRIC", [a, b]) if a.is_point() && b.has_center() => {
+            vec![one(Kind::Coincident, vec![a.r.clone(), b.center()])]
+        }
+        ("CONCENTRIC", [a, b]) if a.has_center() && b.is_point() => {
+            vec![one(Kind::Coincident, vec![b.r.clone(), a.center()])]
+        }
+        ("MIDPOINT", [a, b])
+            if a.is_point() && matches!(b.shape, Shape::Segment | Shape::Arc { .. }) =>
+        {
+            vec![one(Kind::Midpoint, vec![a.r.clone(), b.r.clone()])]
+        }
+        ("MIDPOINT", [a, b])
+            if b.is_point() && matches!(a.shape, Shape::Segment | Shape::Arc { .. }) =>
+        {
+            vec![one(Kind::Midpoint, vec![b.r.clone(), a.r.clone()])]
+        }
+        // The midpoint of two points (`localMidpoint`, or the older `local0`, comes first): the
+        // two are symmetric about it.
+        ("MIDPOINT", [m, a, b]) if m.is_point() && a.is_point() && b.is_point() => {
+            vec![one(Kind::Symmetric, vec![a.r.clone(), b.r.clone(), m.r.clone()])]
+        }
+        ("MIRROR" | "SYMMETRIC", [a, b]) => {
+            let Some(m) = axis.as_ref().filter(|m| m.is_line() || m.is_point()) else {
+                return unexpressible();
+            };
+            if a.is_point() && b.is_point() {
+                vec![one(Kind::Symmetric, vec![a.r.clone(), b.r.clone(), m.r.clone()])]
+            } else if a.is_round() && b.is_round() {
+                // Mirrored circles: mirrored centres, equal radii.
+                vec![
+                    one(Kind::Symmetric, vec![a.center(), b.center(), m.r.clone()]),
+                    second("equal", Kind::Equal, vec![a.r.clone(), b.r.clone()]),
+                ]
+            } else if a.is_line() && b.is_line() {
+                return skip(
+                    "two lines mirrored about a line (their carriers symmetric) are not expressible: the neutral \
+                     Symmetric takes points"
+                        .into(),
+                );
+            } else {
+                return unexpressible();
+            }
+        }
+        ("MIRROR" | "SYMMETRIC", [a, b, m])
+            if axis.is_none() && a.is_point() && b.is_point() && (m.is_line() || m.is_point()) =>
+        {
+            vec![one(Kind::Symmetric, vec![a.r.clone(), b.r.clone(), m.r.clone()])]
+        }
+        ("DISTANCE", [a, b]) => {
+            let v = match value("length", Measure::Length) {
+                Ok(v) => v,
+                Err(why) => return skip(why),
+            };
+            match params.option("direction").unwrap_or("MINIMUM") {
+                "MINIMUM" => {
+                    let refs = if (a.is_point() && (b.is_point() || b.is_line() || b.is_round()))
+                        || (a.is_line() && b.is_line())
+                        || (a.is_round() && b.is_round())
+                    {
+                        vec![a.r.clone(), b.r.clone()]
+                    } else if b.is_point() && (a.is_line() || a.is_round()) {
+                        vec![b.r.clone(), a.r.clone()]
+                    } else {
+                        return unexpressible();
+                    };
+                    vec![with(Kind::Distance, refs, v)]
+                }
+                direction @ ("HORIZONTAL" | "VERTICAL") if a.is_point() && b.is_point() => {
+                    let axis = usize::from(direction == "VERTICAL");
+                    let v = v.map(|v| drawing.signed(v, drawing.delta(&a.r, &b.r, axis)));
+                    let kind = if axis == 0 { Kind::DistanceX } else { Kind::DistanceY };
+                    vec![with(kind, vec![a.r.clone(), b.r.clone()], v)]
+                }
+                direction => {
+                    return skip(format!(
+                        "a {direction} distance between {} is not expressible",
+                        shapes()
+                    ));
+                }
+            }
+        }
+        ("CENTERLINE_DIMENSION", [a, b]) => {
+            // Twice the distance to the centreline (a diameter in a sketch to revolve).
+            let v = match value("length", Measure::Length) {
+                Ok(v) => v.map(|v| Number(v.0 / BigRational::from_integer(2.into()))),
+                Err(why) => return skip(why),
+            };
+            let refs = if a.is_line() && (b.is_point() || b.is_line()) {
+                vec![b.r.clone(), a.r.clone()]
+            } else if b.is_line() && a.is_point() {
+                vec![a.r.clone(), b.r.clone()]
+            } else {
+                return unexpressible();
+            };
+            vec![with(Kind::Distance, refs, v)]
+        }
+        ("LENGTH", [a]) if a.is_segment() => {
+            let v = match value("length", Measure::Length) {
+                Ok(v) => v,
+                Err(why) => return skip(why),
+            };
+            match params.option("direction").unwrap_or("MINIMUM") {
+                "MINIMUM" => vec![with(Kind::Length, vec![a.r.clone()], v)],
+                direction @ ("HORIZONTAL" | "VERTICAL") => {
+                    let axis = usize::from(direction == "VERTICAL");
+                    let (s, e) = (
+                        Ref::part(a.r.entity.clone(), Part::Start),
+                        Ref::part(a.r.entity.clone(), Part::End),
+                    );
+                    let v = v.map(|v| drawing.signed(v, drawing.delta(&s, &e, axis)));
+                    let kind = if axis == 0 { Kind::DistanceX } else { Kind::DistanceY };
+                    vec![with(kind, vec![a.r.clone()], v)]
+                }
+                direction => return skip(format!("a {direction} length is not expressible")),
+            }
+        }
+        ("RADIUS" | "DIAMETER", [a]) if a.is_round() => {
+            let v = match value("length", Measure::Length) {
+                Ok(v) => v,
+                Err(why) => return skip(why),
+            };
+            let kind = if ctype == "RADIUS" { Kind::Radius } else { Kind::Diameter };
+            vec![with(kind, vec![a.r.clone()], v)]
+        }
+        ("ANGLE", [a, b]) if a.is_line() && b.is_line() => {
+            let v = match value("angle", Measure::Angle) {
+                Ok(v) => v,
+                Err(why) => return skip(why),
+            };
+            let v = v.map(|v| drawing.oriented_angle(v, &a.r, &b.r));
+            vec![with(Kind::Angle, vec![a.r.clone(), b.r.clone()], v)]
+        }
+        ("FIX" | "PROJECTED", [a]) => vec![one(Kind::Fix, vec![a.r.clone()])],
+        _ => return unexpressible(),
+    };
+    Ok(Outcome::Constraints(out))
+}
+
+fn level(ctype: &str) -> Kind {
+    if ctype == "HORIZONTAL" { Kind::Horizontal } else { Kind::Vertical }
+}
+
+/// Measurements on the drawing, to orient unsigned dimensions the way the sketch is drawn.
+struct Drawing<'a> {
+    table: &'a Table,
+    entities: &'a [ir::Entity],
+}
+
+impl Drawing<'_> {
+    fn geometry(&self, id: &str) -> Option<&Geometry> {
+        self.table.index(id).and_then(|i| self.entities.get(i)).map(|e| &e.geometry)
+    }
+
+    fn position(&self, r: &Ref) -> Option<[f64; 2]> {
+        let at = |c: &[Number]| match c {
+            [x, y] => Some([x.to_f64(), y.to_f64()]),
+            _ => None,
+        };
+        match (self.geometry(&r.entity)?, r.part) {
+            (Geometry::Point { at: p }, Part::Whole) => at(p),
+            (Geometry::Segment { start, .. } | Geometry::Arc { start, .. }, Part::Start) => {
+                at(start)
+            }
+            (Geometry::Segment { end, .. } | Geometry::Arc { end, .. }, Part::End) => at(end),
+            (
+                Geometry::Circle { center, .. }
+                | Geometry::Arc { center, .. }
+                | Geometry::Ellipse { center, .. }
+                | Geometry::EllipticalArc { center, .. },
+                Part::Center,
+            ) => at(center),
+            (Geometry::EllipticalArc { start, .. }, Part::Start) => at(start),
+            (Geometry::EllipticalArc { end, .. }, Part::End) => at(end),
+            (Geometry::BSpline { poles, .. }, Part::Start) => at(poles.first()?),
+            (Geometry::BSpline { poles, .. }, Part::End) => at(poles.last()?),
+            _ => None,
+        }
+    }
+
+    /// Coordinate `axis` of `b` minus that of `a`, in the drawing.
+    fn delta(&self, a: &Ref, b: &Ref, axis: usize) -> Option<f64> {
+        Some(self.position(b)?[axis] - self.position(a)?[axis])
+    }
+
+    /// An unsigned distance given the sign the drawing shows.
+    fn signed(&self, v: Number, delta: Option<f64>) -> Number {
+        if delta.is_some_and(|d| d < 0.0) { Number(-v.0) } else { v }
+    }
+
+    fn direction(&self, r: &Ref) -> Option<[f64; 2]> {
+        let to = |a: &[Number], b: &[Number]| match (a, b) {
+            ([ax, ay], [bx, by]) => Some([bx.to_f64() - ax.to_f64(), by.to_f64() - ay.to_f64()]),
+            _ => None,
+        };
+        match self.geometry(&r.entity)? {
+            Geometry::Segment { start, end } => to(start, end),
+            Geometry::Line { a, b } => to(a, b),
+            _ => None,
+        }
+    }
+
+    /// Onshape's angle dimension is unsigned, between undirected lines; the neutral one is the
+    /// angle from the first line's direction (start to end) to the second's. Of the angles
+    /// `±value + k·180°` the one nearest the drawing is taken, in (−180°, 180°].
+    fn oriented_angle(&self, v: Number, a: &Ref, b: &Ref) -> Number {
+        let (Some(d1), Some(d2)) = (self.direction(a), self.direction(b)) else { return v };
+        let drawn =
+            (d1[0] * d2[1] - d1[1] * d2[0]).atan2(d1[0] * d2[0] + d1[1] * d2[1]).to_degrees();
+        let value = v.to_f64();
+        if !drawn.is_finite() || value.is_nan() || value.abs() > 1e6 {
+            return v;
+        }
+        let mut best: Option<(f64, BigRational)> = None;
+        for sign in [1i64, -1] {
+            let base = sign as f64 * value;
+            let k = ((drawn - base) / 180.0).round();
+            let miss = (drawn - (base + 180.0 * k)).abs();
+            if best.as_ref().is_none_or(|(m, _)| miss < *m) {
+                let Some(k) = k.to_i64() else { return v };
+                let exact = &v.0 * BigRational::from_integer(sign.into())
+                    + BigRational::from_integer((180 * k).into());
+                best = Some((miss, exact));
+            }
+        }
+        let Some((_, mut angle)) = best else { return v };
+        let full = BigRational::from_integer(360.into());
+        let half = BigRational::from_integer(180.into());
+        while angle > half {
+            angle -= &full;
+        }
+        while angle <= -&half {
+            angle += &full;
+        }
+        Number(angle)
+    }
+}

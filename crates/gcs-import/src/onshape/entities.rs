@@ -1,0 +1,423 @@
+//! Sketch entities: `BTMSketchPoint`, `BTMSketchCurve` (whole curves) and
+//! `BTMSketchCurveSegment` (bounded curves) with their `BTCurveGeometry…` geometry, read into
+//! [`ir::Entity`]s, and the table that resolves the constraints' references to them.
+
+use std::collections::HashMap;
+
+use num_rational::BigRational;
+
+use super::json::{self, Object};
+use crate::ir::{self, Coords, Geometry, Number, Part, Ref};
+
+/// A line whose parameter range is at most this long (in metres, 1e-9 mm) has zero length: it is
+/// read as a point. Onshape leaves such lines behind when fillets consume a whole side; their end
+/// parameters then agree to about 1e-17 m.
+const ZERO_LENGTH: f64 = 1e-12;
+
+/// How a read entity can be addressed by constraints.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Shape {
+    /// A point (`BTMSketchPoint`).
+    Point,
+    /// A zero-length line, read as a point: `.start` and `.end` are the point itself.
+    ZeroLine,
+    /// A line segment.
+    Segment,
+    /// An unbounded line (a `BTMSketchCurve` with line geometry).
+    Line,
+    /// A circle.
+    Circle,
+    /// A circular arc; `swapped` when Onshape's runs clockwise, so that its `.start` is the
+    /// IR's end point.
+    Arc { swapped: bool },
+    /// An ellipse.
+    Ellipse,
+    /// An elliptical arc (`swapped` as for arcs).
+    EllipticalArc { swapped: bool },
+    /// A B-spline.
+    Spline,
+}
+
+/// What became of an entity element.
+pub(super) enum Read {
+    /// An entity of the neutral sketch.
+    Entity(ir::Entity, Shape),
+    /// An entity that cannot be expressed, with the reason.
+    Skip(String),
+}
+
+/// Reads one entity whose `message` is `msg` (the id has been read by the caller).
+pub(super) fn read(type_name: &str, msg: &Object, id: &str) -> Result<Read, String> {
+    let construction = json::flag(msg, "isConstruction")?;
+    let made = |geometry: Geometry, shape: Shape| {
+        Ok(Read::Entity(
+            ir::Entity { id: id.to_owned(), geometry, construction, external: false },
+            shape,
+        ))
+    };
+    match type_name {
+        "BTMSketchPoint" => {
+            let at = point(json::number(msg, "x")?, json::number(msg, "y")?)?;
+            made(Geometry::Point { at }, Shape::Point)
+        }
+        "BTMSketchCurve" | "BTMSketchCurveSegment" => {
+            let bounded = type_name == "BTMSketchCurveSegment";
+            let geometry = json::field_object(msg, "geometry")?;
+            let geometry_type = json::string(geometry, "typeName")?;
+            let g = json::field_object(geometry, "message")?;
+            let range = || -> Result<(f64, f64), String> {
+                Ok((json::number(msg, "startParam")?, json::number(msg, "endParam")?))
+            };
+            match geometry_type {
+                "BTCurveGeometryLine" => line(g, bounded.then(range).transpose()?, made),
+                "BTCurveGeometryCircle" => circle(g, bounded.then(range).transpose()?, made),
+                "BTCurveGeometryEllipse" => ellipse(g, bounded.then(range).transpose()?, made),
+                "BTCurveGeometrySpline" => spline(g, msg, made),
+                "BTCurveGeometryInterpolatedSpline" => Ok(Read::Skip(
+                    "interpolated spline (BTCurveGeometryInterpolatedSpline): a curve through points with end \
+                     derivatives whose B-spline form (Onshape's parametrisation) is not in the file"
+                        .into(),
+                )),
+                other => Ok(Read::Skip(format!("curve geometry {other} is not supported"))),
+            }
+        }
+        "BTMSketchTextEntity" => Ok(Read::Skip(
+            "text box (BTMSketchTextEntity): its outline depends on the font and the text, not expressible".into(),
+        )),
+        "BTMSketchImageEntity" => Ok(Read::Skip(
+            "image box (BTMSketchImageEntity): a rectangle of the image's aspect ratio, not expressible".into(),
+        )),
+        other => Ok(Read::Skip(format!("entity type {other} is not supported"))),
+    }
+}
+
+/// Metres (a double read from the file) to millimetres, exactly: the shortest decimal of the
+/// double, times 1000 on the rational.
+pub(super) fn mm(x: f64) -> Result<Number, String> {
+    let metres = Number::from_f64(x).ok_or("a coordinate is out of range")?;
+    Ok(Number(metres.0 * BigRational::from_integer(1000.into())))
+}
+
+fn point(x: f64, y: f64) -> Result<Coords, String> {
+    Ok(vec![mm(x)?, mm(y)?])
+}
+
+/// A unit direction, or `None` when it is zero or not finite.
+fn unit(x: f64, y: f64) -> Option<(f64, f64)> {
+    let n = x.hypot(y);
+    (n.is_finite() && n > 0.0).then(|| (x / n, y / n))
+}
+
+fn line(
+    g: &Object,
+    range: Option<(f64, f64)>,
+    made: impl Fn(Geometry, Shape) -> Result<Read, String>,
+) -> Result<Read, String> {
+    let (px, py) = (json::number(g, "pntX")?, json::number(g, "pntY")?);
+    let (dx, dy) = (json::number(g, "dirX")?, json::number(g, "dirY")?);
+    let Some(u) = unit(dx, dy) else {
+        return Ok(Read::Skip("line with a zero direction".into()));
+    };
+    let Some((t0, t1)) = range else {
+        return made(
+            Geometry::Line { a: point(px, py)?, b: point(px + u.0, py + u.1)? },
+            Shape::Line,
+        );
+    };
+    // Onshape's direction is a unit vector; the parameters are arc lengths along it.
+    let start = point(px + t0 * dx, py + t0 * dy)?;
+    if ((t1 - t0) * dx.hypot(dy)).abs() <= ZERO_LENGTH {
+        return made(Geometry::Point { at: start }, Shape::ZeroLine);
+    }
+    let end = point(px + t1 * dx, py + t1 * dy)?;
+    made(Geometry::Segment { start, end }, Shape::Segment)
+}
+
+fn circle(
+    g: &Object,
+    range: Option<(f64, f64)>,
+    made: impl Fn(Geometry, Shape) -> Result<Read, String>,
+) -> Result<Read, String> {
+    let (cx, cy) = (json::number(g, "xCenter")?, json::number(g, "yCenter")?);
+    let r = json::number(g, "radius")?;
+    if r.is_nan() || r <= 0.0 {
+        return Ok(Read::Skip(format!("circle of radius {r} (not positive)")));
+    }
+    let center = point(cx, cy)?;
+    let Some((t0, t1)) = range else {
+        return made(Geometry::Circle { center, radius: mm(r)? }, Shape::Circle);
+    };
+    let clockwise = json::flag(g, "clockwise")?;
+    let Some(u) = unit(
+        json::opt_number(g, "xDir")?.unwrap_or(1.0),
+        json::opt_number(g, "yDir")?.unwrap_or(0.0),
+    ) else {
+        return Ok(Read::Skip("arc with a zero reference direction".into()));
+    };
+    if (t1 - t0).abs() >= std::f64::consts::TAU - 1e-12 {
+        return Ok(Read::Skip("arc spanning a whole turn (its end points coincide)".into()));
+    }
+    // Onshape's parameter is the angle from the reference direction, turning clockwise when
+    // the curve is clockwise: the point at t is c + r (cos t · u + s sin t · u⊥), s = ∓1.
+    let s = if clockwise { -1.0 } else { 1.0 };
+    let at = |t: f64| {
+        point(
+            cx + r * (t.cos() * u.0 - s * t.sin() * u.1),
+            cy + r * (t.cos() * u.1 + s * t.sin() * u.0),
+        )
+    };
+    let (a, b) = (at(t0)?, at(t1)?);
+    // The neutral arc runs counter-clockwise from start to end.
+    let (start, end) = if clockwise { (b, a) } else { (a, b) };
+    made(Geometry::Arc { center, start, end }, Shape::Arc { swapped: clockwise })
+}
+
+fn ellipse(
+    g: &Object,
+    range: Option<(f64, f64)>,
+    made: impl Fn(Geometry, Shape) -> Result<Read, String>,
+) -> Result<Read, String> {
+    let (cx, cy) = (json::number(g, "xCenter")?, json::number(g, "yCenter")?);
+    let (major, minor) = (json::number(g, "radius")?, json::number(g, "minorRadius")?);
+    if major.is_nan() || minor.is_nan() || major <= 0.0 || minor <= 0.0 {
+        return Ok(Read::Skip(format!("ellipse of radii {major} and {minor} (not positive)")));
+    }
+    let Some(u) = unit(json::number(g, "xDir")?, json::number(g, "yDir")?) else {
+        return Ok(Read::Skip("ellipse with a zero axis direction".into()));
+    };
+    let center = point(cx, cy)?;
+    // `radius` lies along (xDir, yDir); the neutral form wants the major axis.
+    let (axis_end, minor_radius) = if major >= minor {
+        (point(cx + major * u.0, cy + major * u.1)?, mm(minor)?)
+    } else {
+        (point(cx - minor * u.1, cy + minor * u.0)?, mm(major)?)
+    };
+    let Some((t0, t1)) = range else {
+        return made(Geometry::Ellipse { center, major: axis_end, minor_radius }, Shape::Ellipse);
+    };
+    if (t1 - t0).abs() >= std::f64::consts::TAU - 1e-12 {
+        return Ok(Read::Skip(
+            "elliptical arc spanning a whole turn (its end points coincide)".into(),
+        ));
+    }
+    let clockwise = json::flag(g, "clockwise")?;
+    let s = if clockwise { -1.0 } else { 1.0 };
+    let at = |t: f64| {
+        point(
+            cx + major * t.cos() * u.0 - s * minor * t.sin() * u.1,
+            cy + major * t.cos() * u.1 + s * minor * t.sin() * u.0,
+        )
+    };
+    let (a, b) = (at(t0)?, at(t1)?);
+    let (start, end) = if clockwise { (b, a) } else { (a, b) };
+    let geometry = Geometry::EllipticalArc { center, major: axis_end, minor_radius, start, end };
+    made(geometry, Shape::EllipticalArc { swapped: clockwise })
+}
+
+/// Largest spline degree read (Onshape draws degree 2 and 3).
+const MAX_DEGREE: f64 = 32.0;
+
+fn spline(
+    g: &Object,
+    msg: &Object,
+    made: impl Fn(Geometry, Shape) -> Result<Read, String>,
+) -> Result<Read, String> {
+    let degree = json::number(g, "degree")?;
+    if !((1.0..=MAX_DEGREE).contains(&degree) && degree.fract() == 0.0) {
+        return Ok(Read::Skip(format!("spline of degree {degree}")));
+    }
+    let degree = degree as usize;
+    if json::flag(g, "isPeriodic")? {
+        return Ok(Read::Skip(
+            "periodic control-point spline: Onshape's periodic knot convention is not verified"
+                .into(),
+        ));
+    }
+    if json::flag(g, "isRational")? {
+        return Ok(Read::Skip(
+            "rational control-point spline: where Onshape stores the weights is not documented"
+                .into(),
+        ));
+    }
+    let coordinates = json::numbers(g, "controlPoints")?;
+    if coordinates.len() % 2 != 0 {
+        return Ok(Read::Skip("spline with an odd number of control point coordinates".into()));
+    }
+    let count = coordinates.len() / 2;
+    if let Some(declared) = json::opt_number(g, "controlPointCount")?
+        && declared != count as f64
+    {
+        return Ok(Read::Skip(format!(
+            "spline declaring {declared} control points but giving {count}"
+        )));
+    }
+    let knots = json::numbers(g, "knots")?;
+    if count <= degree || knots.len() != count + degree + 1 {
+        return Ok(Read::Skip(format!(
+            "spline with {count} control points, degree {degree} and {} knots (not a B-spline)",
+            knots.len()
+        )));
+    }
+    if knots.windows(2).any(|w| w[0].partial_cmp(&w[1]).is_none_or(std::cmp::Ordering::is_gt)) {
+        return Ok(Read::Skip("spline with a decreasing knot vector".into()));
+    }
+    // A segment bounded inside the knot domain is a trimmed spline, which the neutral form has not.
+    let domain = (knots[degree], knots[count]);
+    let (t0, t1) = (json::opt_number(msg, "startParam")?, json::opt_number(msg, "endParam")?);
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()));
+    if t0.is_some_and(|t| !near(t, domain.0)) || t1.is_some_and(|t| !near(t, domain.1)) {
+        return Ok(Read::Skip(format!(
+            "spline trimmed to parameters [{}, {}] inside its knot domain [{}, {}]",
+            t0.unwrap_or(domain.0),
+            t1.unwrap_or(domain.1),
+            domain.0,
+            domain.1
+        )));
+    }
+    let poles = coordinates.chunks(2).map(|c| point(c[0], c[1])).collect::<Result<Vec<_>, _>>()?;
+    let mut grouped: Vec<(f64, u32)> = Vec::new();
+    for &k in &knots {
+        match grouped.last_mut() {
+            Some((last, m)) if *last == k => *m += 1,
+            _ => grouped.push((k, 1)),
+        }
+    }
+    let knots = grouped
+        .into_iter()
+        .map(|(k, m)| Ok((Number::from_f64(k).ok_or("a knot is out of range")?, m)))
+        .collect::<Result<Vec<_>, String>>()?;
+    made(
+        Geometry::BSpline { degree: degree as u32, poles, weights: None, knots, periodic: false },
+        Shape::Spline,
+    )
+}
+
+/// The sketch's entities as constraints see them.
+#[derive(Default)]
+pub(super) struct Table {
+    /// Read entities: id → (shape, index in the sketch's entities).
+    read: HashMap<String, (Shape, usize)>,
+    /// Skipped entities: id → why.
+    skipped: HashMap<String, String>,
+    /// Point ids the entities declare (`startPointId`, `endPointId`, `centerId`) that are not
+    /// `<entity id>.start` etc.: id → (entity, suffix). Only ids declared once.
+    aliases: HashMap<String, Option<(String, &'static str)>>,
+}
+
+/// What a reference string denotes.
+pub(super) enum Target {
+    /// A reference, with the shape it points at (`Shape::Point` for a named point of a curve).
+    Found(Ref, Shape),
+    /// A reference to something that cannot be used: why.
+    Unusable(String),
+}
+
+impl Table {
+    /// Whether `id` is already taken.
+    pub(super) fn contains(&self, id: &str) -> bool {
+        self.read.contains_key(id) || self.skipped.contains_key(id)
+    }
+
+    /// Records a read entity at `index` of the sketch's entities.
+    pub(super) fn add(&mut self, id: &str, shape: Shape, index: usize, msg: &Object) {
+        self.read.insert(id.to_owned(), (shape, index));
+        for (key, suffix) in
+            [("startPointId", "start"), ("endPointId", "end"), ("centerId", "center")]
+        {
+            if let Ok(Some(alias)) = json::opt_string(msg, key)
+                && !alias.is_empty()
+                && alias != format!("{id}.{suffix}")
+            {
+                self.aliases
+                    .entry(alias.to_owned())
+                    .and_modify(|a| *a = None)
+                    .or_insert_with(|| Some((id.to_owned(), suffix)));
+            }
+        }
+    }
+
+    /// Records a skipped entity.
+    pub(super) fn add_skipped(&mut self, id: &str, reason: &str) {
+        self.skipped.insert(id.to_owned(), reason.to_owned());
+    }
+
+    /// Resolves a reference string: `<entity id>` (the entity), `<entity id>.start`, `.end`,
+    /// `.center` (its named points), or a point id an entity declares.
+    pub(super) fn resolve(&self, value: &str) -> Target {
+        if let Some(&(shape, _)) = self.read.get(value) {
+            return Target::Found(Ref::whole(value), shape);
+        }
+        if let Some((base, suffix)) = value.rsplit_once('.')
+            && let Some(&(shape, _)) = self.read.get(base)
+        {
+            return self.part(base, shape, suffix, value);
+        }
+        if let Some(Some((base, suffix))) = self.aliases.get(value)
+            && let Some(&(shape, _)) = self.read.get(base)
+        {
+            return self.part(base, shape, suffix, value);
+        }
+        // A part of a skipped entity (`<text id>.sketch_text.baseline`, `<spline id>.3.internal`).
+        let mut prefix = value;
+        loop {
+            if let Some(reason) = self.skipped.get(prefix) {
+                // The kind of entity: the reason up to its first parenthesis or colon.
+                let what = reason.split([':', '(']).next().unwrap_or(reason).trim();
+                return Target::Unusable(if prefix == value {
+                    format!("references `{value}`, a skipped entity ({what})")
+                } else {
+                    format!(
+                        "references `{value}`, a part of the skipped entity `{prefix}` ({what})"
+                    )
+                });
+            }
+            match prefix.rsplit_once('.') {
+                Some((head, _)) => prefix = head,
+                None => break,
+            }
+        }
+        if value.is_empty() {
+            return Target::Unusable("an empty entity reference".into());
+        }
+        Target::Unusable(format!("references the unknown entity `{value}`"))
+    }
+
+    fn part(&self, base: &str, shape: Shape, suffix: &str, value: &str) -> Target {
+        let part = match (shape, suffix) {
+            (Shape::ZeroLine, "start" | "end") => {
+                return Target::Found(Ref::whole(base), Shape::Point);
+            }
+            (Shape::Segment | Shape::Spline, "start") => Part::Start,
+            (Shape::Segment | Shape::Spline, "end") => Part::End,
+            (
+                Shape::Circle | Shape::Arc { .. } | Shape::Ellipse | Shape::EllipticalArc { .. },
+                "center",
+            ) => Part::Center,
+            (Shape::Arc { swapped } | Shape::EllipticalArc { swapped }, "start") => {
+                if swapped {
+                    Part::End
+                } else {
+                    Part::Start
+                }
+            }
+            (Shape::Arc { swapped } | Shape::EllipticalArc { swapped }, "end") => {
+                if swapped {
+                    Part::Start
+                } else {
+                    Part::End
+                }
+            }
+            _ => {
+                return Target::Unusable(format!(
+                    "references `{value}`: the entity `{base}` has no point `{suffix}`"
+                ));
+            }
+        };
+        Target::Found(Ref::part(base, part), Shape::Point)
+    }
+
+    /// The index in the sketch's entities of a read entity.
+    pub(super) fn index(&self, id: &str) -> Option<usize> {
+        self.read.get(id).map(|&(_, i)| i)
+    }
+}
