@@ -67,6 +67,25 @@ pub fn load(file: &str) -> System {
     System::from_ron_str(&text, Some(file)).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The model named `model` of `file` (relative to the workspace root): the RON model itself, or
+/// that sketch of a CAD file (see `gcs-import`).
+///
+/// # Panics
+/// When the file cannot be read, is not valid, or holds no such model.
+pub fn load_model(file: &str, model: &str) -> System {
+    if file.ends_with(".ron") {
+        return load(file);
+    }
+    let bytes = std::fs::read(workspace_root().join(file))
+        .unwrap_or_else(|e| panic!("cannot read {file}: {e}"));
+    let sketches = gcs_import::import(file, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    sketches
+        .into_iter()
+        .find(|l| l.system.name() == model)
+        .unwrap_or_else(|| panic!("{file} holds no model {model}"))
+        .system
+}
+
 /// The system rebuilt with [`SystemBuilder`], entity by entity and constraint by constraint in
 /// the same order, with the same ids, kinds, arguments and values; the sketch fields of the
 /// entities for which `keep_sketch` is false are left out (`None`).

@@ -35,6 +35,15 @@ fn hint(e: &gcs_analysis::AnalysisError) -> &'static str {
     }
 }
 
+/// A text report with the import section of a CAD sketch after its first line.
+pub(crate) fn with_import_text(text: &str, import: Option<&gcs_report::ImportReport>) -> String {
+    let Some(import) = import else { return text.to_owned() };
+    match text.split_once('\n') {
+        Some((first, rest)) => format!("{first}\n{}{rest}", import.text()),
+        None => format!("{text}\n{}", import.text().trim_end()),
+    }
+}
+
 pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     let mut out = Out::new();
     let mut failed = 0;
@@ -45,30 +54,38 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
         ..AnalysisOptions::default()
     };
     let mut dot = String::new();
-    for (file, system) in batch::models(paths) {
-        let result = system.and_then(|system| {
+    for (file, model) in batch::models(paths) {
+        let result = model.and_then(|(system, import)| {
+            // A CAD file holds several sketches: the message names the one that failed.
+            let at = match &import {
+                Some(_) => format!("{file}: {}", system.name()),
+                None => file.clone(),
+            };
             let analysis =
-                analyze(&system, &options).map_err(|e| format!("{file}: {e}{}", hint(&e)))?;
+                analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
             let structural = if settings.structural {
-                Some(Structural::new(&system, &analysis).map_err(|e| format!("{file}: {e}"))?)
+                Some(Structural::new(&system, &analysis).map_err(|e| format!("{at}: {e}"))?)
             } else {
                 None
             };
-            Ok((system, analysis, structural))
+            Ok((system, import, analysis, structural))
         });
         match result {
-            Ok((system, analysis, s)) => {
+            Ok((system, import, analysis, s)) => {
                 if settings.dot.is_some()
                     && let Some(trees) = &analysis.decomposition
                 {
                     dot.push_str(&gcs_report::clusters::dot(&system, trees));
                 }
                 match settings.format {
-                    Format::Json => {
-                        out.line(&Report::new(&system, &file, &analysis, s.as_ref()).to_json())
-                    }
+                    Format::Json => out.line(
+                        &Report::new(&system, &file, &analysis, s.as_ref())
+                            .with_import(import)
+                            .to_json(),
+                    ),
                     Format::Text => {
-                        out.line(&gcs_report::text(&system, &file, &analysis, s.as_ref()))
+                        let text = gcs_report::text(&system, &file, &analysis, s.as_ref());
+                        out.line(&with_import_text(&text, import.as_ref()))
                     }
                 }
             }

@@ -12,8 +12,17 @@ pub(crate) enum Input {
     Missing(PathBuf, String),
 }
 
+/// The files a directory stands for: gcs models (`.ron`) and CAD files (`.slvs`, `.fcstd` in any
+/// case, `.json`).
+fn is_model_file(path: &Path) -> bool {
+    path.extension().is_some_and(|e| {
+        let e = e.to_string_lossy().to_ascii_lowercase();
+        matches!(e.as_str(), "ron" | "slvs" | "fcstd" | "json")
+    })
+}
+
 /// Expands the paths given on the command line: files stay as they are, directories become
-/// every `*.ron` file below them (recursively), sorted by path.
+/// every model or CAD file below them (recursively; see [`is_model_file`]), sorted by path.
 pub(crate) fn expand(paths: &[PathBuf]) -> Vec<Input> {
     let mut out = Vec::new();
     for p in paths {
@@ -39,42 +48,62 @@ fn walk(dir: &Path, files: &mut Vec<PathBuf>) -> io::Result<()> {
         let path = entry?.path();
         if path.is_dir() {
             walk(&path, files)?;
-        } else if path.extension().is_some_and(|e| e == "ron") {
+        } else if is_model_file(&path) {
             files.push(path);
         }
     }
     Ok(())
 }
 
-/// Every model the paths stand for, in order: its display name, and the validated system or
-/// the message of why it could not be read (naming the file).
-pub(crate) fn models(
-    paths: &[PathBuf],
-) -> impl Iterator<Item = (String, Result<gcs_model::System, String>)> {
-    expand(paths).into_iter().map(|input| match input {
+/// One model read: the validated system and, for a sketch of a CAD file, its import section.
+pub(crate) type Model = (gcs_model::System, Option<gcs_report::ImportReport>);
+
+/// Every model the paths stand for, in order: its file's display name, and the model or the
+/// message of why it could not be read (naming the file). A CAD file stands for each of its
+/// sketches, in the file's order.
+pub(crate) fn models(paths: &[PathBuf]) -> impl Iterator<Item = (String, Result<Model, String>)> {
+    expand(paths).into_iter().flat_map(|input| match input {
         Input::Missing(p, why) => {
             let file = display(&p);
             let msg = format!("{file}: {why}");
-            (file, Err(msg))
+            vec![(file, Err(msg))]
         }
         Input::File(p) => {
             let file = display(&p);
-            let result = read(&p).and_then(|text| {
-                gcs_model::System::from_ron_str(&text, Some(&file)).map_err(|e| e.to_string())
-            });
-            (file, result)
+            read_models(&p, &file).into_iter().map(|r| (file.clone(), r)).collect()
         }
     })
+}
+
+/// The models of one file: a RON model, or the sketches of a CAD file (recognised by
+/// extension, then by content).
+fn read_models(path: &Path, file: &str) -> Vec<Result<Model, String>> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => return vec![Err(format!("{file}: cannot read: {e}"))],
+    };
+    let is_ron = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
+    if !is_ron && gcs_import::Format::detect(file, &bytes).is_some() {
+        return match gcs_import::import(file, &bytes) {
+            Ok(sketches) if sketches.is_empty() => vec![Err(format!("{file}: no sketch in it"))],
+            Ok(sketches) => sketches
+                .iter()
+                .map(|l| Ok((l.system.clone(), Some(gcs_report::ImportReport::new(l)))))
+                .collect(),
+            Err(e) => vec![Err(e.to_string())],
+        };
+    }
+    let result = String::from_utf8(bytes)
+        .map_err(|_| format!("{file}: not UTF-8 text (nor a CAD file this build reads)"))
+        .and_then(|text| {
+            gcs_model::System::from_ron_str(&text, Some(file)).map_err(|e| e.to_string())
+        });
+    vec![result.map(|s| (s, None))]
 }
 
 /// The display form of a path in reports: as given, with `/` separators.
 pub(crate) fn display(path: &Path) -> String {
     path.display().to_string().replace('\\', "/")
-}
-
-/// Reads a file as UTF-8 text, with an error message naming it.
-pub(crate) fn read(path: &Path) -> Result<String, String> {
-    std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", display(path)))
 }
 
 /// Standard output, with a broken pipe (`gcs … | head`) ending the program quietly.

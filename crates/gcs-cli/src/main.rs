@@ -10,6 +10,7 @@
 mod analyze;
 mod batch;
 mod check;
+mod convert;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -86,6 +87,22 @@ enum Command {
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
     },
+    /// Convert CAD files (SolveSpace .slvs, FreeCAD .FCStd, Onshape sketch JSON) to gcs models
+    /// in RON, one per sketch; what a sketch holds that cannot be expressed is listed on
+    /// standard error.
+    ///
+    /// Without -o the model is printed (the file must hold one sketch). With -o OUT: a file
+    /// with one sketch is written to OUT, unless OUT is an existing directory; a file with
+    /// several (or any file, when OUT is a directory) is written below the directory OUT, one
+    /// file per sketch named after its model (`OUT/Bielle/Sketch005.ron`).
+    Convert {
+        /// The CAD file.
+        #[arg(value_name = "FILE")]
+        input: PathBuf,
+        /// Where to write the RON.
+        #[arg(short, long, value_name = "OUT")]
+        output: Option<PathBuf>,
+    },
     /// Print a generated model of a family of growing size (the benchmark families) as RON.
     Generate {
         /// The family: `rectangles` (N fixed CAD rectangles), `laman` (a random rigid 2D bar
@@ -143,6 +160,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
+        Command::Convert { input, output } => convert::run(&input, output.as_deref()),
         Command::Analyze {
             backend,
             seed,

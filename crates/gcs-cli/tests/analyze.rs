@@ -102,7 +102,17 @@ fn check_report(v: &Value, file: &str) {
 fn json_lines_for_every_model_in_sorted_order() {
     let (code, stdout, stderr) = gcs(&["analyze", "--format", "json", "data/"]);
     assert_eq!(code, 0, "{stderr}");
-    let reports = json_lines(&stdout);
+    let all = json_lines(&stdout);
+    // The CAD examples of data/cad/: one report per sketch, with the import section.
+    let (reports, cad): (Vec<Value>, Vec<Value>) =
+        all.into_iter().partition(|v| string(v, "file").ends_with(".ron"));
+    for v in &cad {
+        let file = string(v, "file");
+        let stem = Path::new(file).file_stem().unwrap().to_string_lossy();
+        assert!(string(v, "model").starts_with(&format!("{stem}/")), "{v}");
+        assert!(boolean(v, "complete_import"), "the shipped CAD examples import completely: {v}");
+        assert!(uint(v, "rank") > 0, "{v}");
+    }
     let files = data_files();
     let got: Vec<&str> = reports.iter().map(|v| string(v, "file")).collect();
     assert_eq!(

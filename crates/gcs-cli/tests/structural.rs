@@ -30,8 +30,6 @@ fn disagreements(text: &str) -> Vec<&str> {
     text.lines().filter_map(|l| l.trim_start().strip_prefix("disagreement: ")).collect()
 }
 
-use gcs_suite::load;
-
 #[test]
 fn flow_fig1a_dense_is_fooled_by_the_parallel_lines() {
     let r = report("data/paper/flow_fig1a.ron");
@@ -183,7 +181,7 @@ fn json_shape_on_all_of_data() {
     let verdicts = ["over-rigid", "well-rigid", "under-rigid"];
     for r in &lines {
         let file = r["file"].as_str().unwrap();
-        let system = load(file);
+        let system = gcs_suite::load_model(file, r["model"].as_str().unwrap());
         let entity = |id: &str| system.entity_by_id(id).unwrap().index();
         let constraint = |id: &str| system.constraint_by_id(id).unwrap().index();
         let s = &r["structural"];

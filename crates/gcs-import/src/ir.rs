@@ -70,6 +70,10 @@ pub struct Sketch {
     pub constraints: Vec<Constraint>,
     /// What could not be expressed, each with its reason.
     pub skipped: Vec<Skipped>,
+    /// What was not imported although nothing is lost, each with why: an item said by another
+    /// (SolveSpace's coincidence at a tangent joint, folded into `TangentAtEnds`), an
+    /// annotation that is not geometry (a comment).
+    pub notes: Vec<Skipped>,
     /// What the source program recorded about its own solution, when it does (for example a
     /// DOF count or a "fully constrained" flag), as `(name, value)` pairs, verbatim.
     pub source_verdict: Vec<(String, String)>,

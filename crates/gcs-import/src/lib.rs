@@ -11,10 +11,12 @@
 pub mod error;
 pub mod freecad;
 pub mod ir;
+pub mod lower;
 pub mod onshape;
 pub mod slvs;
 
 pub use error::ImportError;
+pub use lower::{Lowered, lower};
 
 /// A format this crate reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,4 +81,19 @@ pub fn file_stem(file: &str) -> String {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| file.to_owned())
+}
+
+/// Reads every sketch of a file (format detected by [`Format::detect`]) and lowers each into a
+/// gcs model.
+///
+/// # Errors
+/// An [`ImportError`] when the format is not recognised or the file cannot be read at all.
+pub fn import(file: &str, bytes: &[u8]) -> Result<Vec<Lowered>, ImportError> {
+    let format = Format::detect(file, bytes).ok_or_else(|| {
+        ImportError::new(
+            file,
+            "not a SolveSpace, FreeCAD or Onshape sketch file (by extension or content)",
+        )
+    })?;
+    Ok(read(format, file, bytes)?.iter().map(lower).collect())
 }

@@ -109,12 +109,13 @@ pub fn sqrt_rational(q: &BigRational) -> Option<BigRational> {
 
 /// Writes a rational the way a model file holds it: an integer, a terminating decimal, or (when
 /// the decimal expansion does not terminate) a quoted fraction `"p/q"`, which the reader
-/// accepts too.
+/// accepts too. A decimal with more significant digits than a double holds (such as
+/// `85.351177000000007`) is quoted as well: bare numbers are read through a double.
 ///
 /// # Example
 /// ```
 /// use gcs_model::number::{format_exact, parse_exact};
-/// for s in ["7", "-0.125", "\"1/3\""] {
+/// for s in ["7", "-0.125", "\"1/3\"", "\"85.351177000000007\""] {
 ///     let q = parse_exact(s.trim_matches('"')).unwrap();
 ///     assert_eq!(format_exact(&q), s);
 /// }
@@ -151,7 +152,13 @@ pub fn format_exact(q: &BigRational) -> String {
         digits
     };
     let (int, frac) = padded.split_at(padded.len() - places);
-    format!("{}{}.{}", if negative { "-" } else { "" }, int, frac)
+    let decimal = format!("{}{}.{}", if negative { "-" } else { "" }, int, frac);
+    // A bare number in RON is read through a double: a decimal with more digits than a double
+    // keeps (FreeCAD writes 17) is quoted, so that it reads back exactly.
+    match decimal.parse::<f64>().ok().and_then(rational_from_f64_decimal) {
+        Some(back) if &back == q => decimal,
+        _ => format!("\"{decimal}\""),
+    }
 }
 
 /// A number as written in a model file, before validation: exact when it could be read

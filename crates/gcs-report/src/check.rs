@@ -28,6 +28,9 @@ pub struct CheckReport {
     pub naive_dof: i64,
     /// 3 or 6.
     pub displacements: usize,
+    /// For a model read from a CAD file: the import section (flattened into the line).
+    #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
+    pub import: Option<crate::ImportReport>,
 }
 
 impl CheckReport {
@@ -44,7 +47,14 @@ impl CheckReport {
             constraint_doc: system.doc_sum(),
             naive_dof: system.naive_dof(),
             displacements: system.dim().displacements(),
+            import: None,
         }
+    }
+
+    /// The same counts with the import section of a model read from a CAD file.
+    pub fn with_import(mut self, import: Option<crate::ImportReport>) -> CheckReport {
+        self.import = import;
+        self
     }
 
     /// One line of JSON.

@@ -32,11 +32,13 @@
 mod check;
 pub mod clusters;
 mod error;
+mod import;
 mod report;
 mod structural;
 
 pub use check::CheckReport;
 pub use error::ReportError;
+pub use import::{ImportReport, SkippedReport};
 pub use report::{
     ArithmeticName, BackendName, ProofName, RedundantReport, Report, SCHEMA, WitnessName,
     failure_json, text,

@@ -209,6 +209,10 @@ pub struct Report {
     /// tolerance (only with `--backend float`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uncertain: Option<Vec<String>>,
+    /// For a model read from a CAD file: `complete_import`, `skipped` and the rest of the
+    /// import section (flattened into the line).
+    #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
+    pub import: Option<crate::ImportReport>,
 }
 
 /// A constraint far from what its drawing shows (`sketch.largest_residual`).
@@ -339,7 +343,14 @@ impl Report {
                 .uncertain
                 .as_ref()
                 .map(|u| u.iter().map(|c| system.constraint(*c).id.clone()).collect()),
+            import: None,
         }
+    }
+
+    /// The same report with the import section of a model read from a CAD file.
+    pub fn with_import(mut self, import: Option<crate::ImportReport>) -> Report {
+        self.import = import;
+        self
     }
 
     /// The report as one line of JSON (JSON Lines).

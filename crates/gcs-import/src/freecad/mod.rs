@@ -313,6 +313,7 @@ fn read_sketch(
         entities: Vec::new(),
         constraints: Vec::new(),
         skipped: Vec::new(),
+        notes: Vec::new(),
         source_verdict: Vec::new(),
     };
     let mut table = GeoTable { before_1_0: before_1_0.clone(), ..GeoTable::default() };

@@ -145,6 +145,7 @@ fn read_sketch(
         entities: Vec::new(),
         constraints: Vec::new(),
         skipped: Vec::new(),
+        notes: Vec::new(),
         source_verdict: Vec::new(),
     };
     let mut table = Table::default();

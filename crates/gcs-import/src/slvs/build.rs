@@ -119,6 +119,7 @@ pub(super) fn sketches(file: &str, stem: &str, f: &File) -> Result<Vec<ir::Sketc
             own_skipped: HashMap::new(),
             staging: Vec::new(),
             skipped: Vec::new(),
+            notes: Vec::new(),
         };
         if !b.drawing {
             b.skipped.push(Skipped {
@@ -152,6 +153,7 @@ pub(super) fn sketches(file: &str, stem: &str, f: &File) -> Result<Vec<ir::Sketc
             entities: entities.into_iter().map(|(_, e)| e).collect(),
             constraints,
             skipped: b.skipped,
+            notes: b.notes,
             source_verdict: Vec::new(),
         });
     }
@@ -224,6 +226,8 @@ fn finite4(p: &[Num; 4]) -> Option<[&Number; 4]> {
 enum Outcome {
     Emit(ir::Constraint),
     Skip(String),
+    /// Not imported, and nothing lost: said by another constraint, or not geometry.
+    Note(String),
 }
 
 /// The references of a constraint being built, and the first one off the workplane.
@@ -257,6 +261,7 @@ struct Builder<'a> {
     /// External entities needed by the constraint being read, added when it is emitted.
     staging: Vec<(usize, ir::Entity)>,
     skipped: Vec<Skipped>,
+    notes: Vec<Skipped>,
 }
 
 impl<'a> Builder<'a> {
@@ -806,11 +811,17 @@ impl<'a> Builder<'a> {
                 continue;
             }
             if let Some(t) = folded.get(&i) {
-                outcomes[i] = Some(Outcome::Skip(format!(
+                outcomes[i] = Some(Outcome::Note(format!(
                     "POINTS_COINCIDENT (20) folded into the tangency {}: the IR's TangentAtEnds \
                      states the joint and the tangency as one constraint",
                     cid(*t)
                 )));
+                continue;
+            }
+            if c.ty == ct::COMMENT {
+                outcomes[i] = Some(Outcome::Note(
+                    "comment (1000): a text annotation, not a constraint".into(),
+                ));
                 continue;
             }
             self.staging.clear();
@@ -830,6 +841,9 @@ impl<'a> Builder<'a> {
                 Some(Outcome::Emit(constraint)) => out.push(constraint),
                 Some(Outcome::Skip(reason)) => {
                     self.skipped.push(Skipped { item: cid(c.h), reason });
+                }
+                Some(Outcome::Note(reason)) => {
+                    self.notes.push(Skipped { item: cid(c.h), reason });
                 }
                 None => {}
             }

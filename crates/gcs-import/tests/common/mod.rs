@@ -48,3 +48,33 @@ pub fn files_with_suffix(dir: &Path, suffix: &str) -> Vec<PathBuf> {
     out.sort();
     out
 }
+
+/// Every sketch file of the corpus as `(name, bytes)`: SolveSpace's `.slvs` files, the FreeCAD
+/// documents, and the Onshape JSON files of SketchGraphs' sample (unpacked from its `.tar.xz`,
+/// named `SketchGraphs/<path in the archive>`), sorted by name. `None` without the corpus.
+pub fn sketch_files() -> Option<Vec<(String, Vec<u8>)>> {
+    use std::io::Read;
+    let dir = external()?;
+    let mut files = Vec::new();
+    for (sub, suffix) in [("solvespace", ".slvs"), ("FreeCAD_Assembly4", ".fcstd")] {
+        for path in files_with_suffix(&dir.join(sub), suffix) {
+            let name = path.strip_prefix(&dir).unwrap_or(&path).to_string_lossy().into_owned();
+            files.push((name, std::fs::read(&path).expect("a corpus file")));
+        }
+    }
+    let archive = std::fs::read(dir.join("SketchGraphs/tests/testdata/sample_json.tar.xz"))
+        .expect("the sample archive");
+    let mut tar = Vec::new();
+    lzma_rs::xz_decompress(&mut archive.as_slice(), &mut tar).expect("an xz archive");
+    for entry in tar::Archive::new(tar.as_slice()).entries().expect("a tar archive") {
+        let mut entry = entry.expect("a tar entry");
+        let path = entry.path().expect("a path").to_string_lossy().into_owned();
+        if path.ends_with(".json") {
+            let mut bytes = Vec::new();
+            entry.read_to_end(&mut bytes).expect("readable");
+            files.push((format!("SketchGraphs/{path}"), bytes));
+        }
+    }
+    files.sort();
+    Some(files)
+}

@@ -1,0 +1,464 @@
+//! The lowering: a neutral sketch ([`Sketch`]) becomes a gcs model ([`System`]).
+//!
+//! One place decides how the CAD vocabulary becomes gcs entities and constraints, for every
+//! reader. The rules (also in `docs/format.md`, "Importing CAD files"):
+//!
+//! - **Entities.** A point is a `Point`; a segment is a `Segment` between two points of its
+//!   own, `<id>.start` and `<id>.end`; a line is a `Line`; a circle a `Circle`; an arc an `Arc`
+//!   (its end points `<id>.start`, `<id>.end` are the arc's own); a 3D plane a `Plane`. A
+//!   named point of a curve is addressed as the model does: `<id>.start`, `<id>.end`,
+//!   `<id>.center`. External geometry is fixed where it is drawn: a `Fix` named `<id>#fixed`.
+//!   Ellipses, elliptical arcs and B-splines are not in the gcs model yet: skipped, with every
+//!   constraint that refers to them.
+//! - **Constraints** keep the source's id. Where one CAD constraint says two things it becomes
+//!   two gcs constraints, the second named after the first: tangency at shared end points is
+//!   `TangentAt` (id) + `Coincident` (`<id>#coincident`) — one transversal formulation, never
+//!   incidence + tangency, which is singular at every solution; collinear lines are `Parallel`
+//!   and `Incident` (`<id>#on`). Horizontal (vertical) points are `DistanceY` (`DistanceX`) 0, a
+//!   length is the distance between the segment's end points, a diameter a radius of half the
+//!   value, equal lengths or radii `EqualLength` or `EqualRadius`, a line's angle to the x axis
+//!   an `Angle` to a fixed horizontal line `#x-axis`.
+//! - **Reference (non-driving) dimensions** are measured, not imposed: not lowered, listed in
+//!   [`Lowered::reference`].
+//! - Whatever cannot be expressed is listed in [`Lowered::skipped`] with its reason (after
+//!   what the reader skipped), and the import is not complete.
+
+use gcs_model::{ConstraintKind as K, Dim, System, SystemBuilder};
+use num_rational::BigRational;
+
+use crate::ir::{Constraint, Geometry, Kind, Part, Ref, Sketch, Skipped};
+
+/// A sketch as a gcs model, with what did not make it.
+#[derive(Clone, Debug)]
+pub struct Lowered {
+    /// The model, named `<file stem>/<sketch>` (the sketch's name).
+    pub system: System,
+    /// The sketch's human label, when the source has one.
+    pub label: Option<String>,
+    /// What could not be expressed — by the reader, then by the lowering — each with its
+    /// reason.
+    pub skipped: Vec<Skipped>,
+    /// What was not imported although nothing is lost (see [`Sketch::notes`]).
+    pub notes: Vec<Skipped>,
+    /// The reference (non-driving) dimensions: measured by the CAD program, not imposed, so
+    /// not in the model.
+    pub reference: Vec<String>,
+    /// What the source program recorded about its own solution, verbatim.
+    pub source_verdict: Vec<(String, String)>,
+}
+
+impl Lowered {
+    /// Everything in the sketch was expressed.
+    pub fn complete(&self) -> bool {
+        self.skipped.is_empty()
+    }
+}
+
+/// What a lowered entity is, for choosing how constraints on it lower.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shape {
+    Point,
+    Segment,
+    Line,
+    Circle,
+    Arc,
+    Plane,
+}
+
+/// What a reference stands for once resolved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Class {
+    /// A point entity or a named point of a curve.
+    Point,
+    /// A segment or a line.
+    Straight,
+    /// A circle or an arc.
+    Round,
+    /// A plane.
+    Plane,
+}
+
+/// A resolved reference: the model id and what it is.
+#[derive(Clone, Debug)]
+struct Target {
+    id: String,
+    class: Class,
+    shape: Option<Shape>,
+}
+
+/// The id of the fixed horizontal line that angles to the x axis are measured against.
+const X_AXIS: &str = "#x-axis";
+
+struct Lowering {
+    builder: SystemBuilder,
+    shapes: std::collections::HashMap<String, Shape>,
+    /// Entities of the sketch not lowered, with the reason.
+    dropped: std::collections::HashMap<String, String>,
+    skipped: Vec<Skipped>,
+    reference: Vec<String>,
+}
+
+/// Lowers a sketch into a gcs model. Never fails: what cannot be expressed is skipped with its
+/// reason.
+pub fn lower(sketch: &Sketch) -> Lowered {
+    let dim = if sketch.dim == 3 { Dim::Three } else { Dim::Two };
+    let mut l = Lowering {
+        builder: SystemBuilder::new(sketch.name.clone(), dim),
+        shapes: Default::default(),
+        dropped: Default::default(),
+        skipped: sketch.skipped.clone(),
+        reference: Vec::new(),
+    };
+    for entity in &sketch.entities {
+        match l.entity(&entity.id, &entity.geometry) {
+            Ok(shape) => {
+                l.shapes.insert(entity.id.clone(), shape);
+                if entity.external {
+                    let id = format!("{}#fixed", entity.id);
+                    if let Err(e) = l.builder.constraint(K::Fix, &id, &[&entity.id], None) {
+                        l.skip(&id, format!("external geometry not fixed: {e}"));
+                    }
+                }
+            }
+            Err(reason) => {
+                l.dropped.insert(entity.id.clone(), reason.clone());
+                l.skip(&entity.id, reason);
+            }
+        }
+    }
+    for c in &sketch.constraints {
+        if !c.driving {
+            l.reference.push(c.id.clone());
+            continue;
+        }
+        if let Err(reason) = l.constraint(c) {
+            l.skip(&c.id, reason);
+        }
+    }
+    Lowered {
+        system: l.builder.build(),
+        label: sketch.label.clone(),
+        skipped: l.skipped,
+        notes: sketch.notes.clone(),
+        reference: l.reference,
+        source_verdict: sketch.source_verdict.clone(),
+    }
+}
+
+fn rational(coords: &[crate::ir::Number]) -> Vec<BigRational> {
+    coords.iter().map(|n| n.0.clone()).collect()
+}
+
+impl Lowering {
+    fn skip(&mut self, item: &str, reason: String) {
+        self.skipped.push(Skipped { item: item.to_owned(), reason });
+    }
+
+    fn entity(&mut self, id: &str, geometry: &Geometry) -> Result<Shape, String> {
+        let b = &mut self.builder;
+        let e = |e: gcs_model::ModelError| e.to_string();
+        match geometry {
+            Geometry::Point { at } => b.point(id, Some(rational(at))).map(|_| Shape::Point),
+            Geometry::Segment { start, end } => {
+                let (from, to) = (format!("{id}.start"), format!("{id}.end"));
+                b.point(&from, Some(rational(start))).map_err(e)?;
+                b.point(&to, Some(rational(end))).map_err(e)?;
+                b.segment(id, &from, &to).map(|_| Shape::Segment)
+            }
+            Geometry::Line { a, b: other } => {
+                b.line(id, Some([rational(a), rational(other)])).map(|_| Shape::Line)
+            }
+            Geometry::Circle { center, radius } => {
+                b.circle(id, Some(rational(center)), Some(radius.0.clone())).map(|_| Shape::Circle)
+            }
+            Geometry::Arc { center, start, end } => b
+                .arc(id, Some(rational(center)), None, Some(rational(start)), Some(rational(end)))
+                .map(|_| Shape::Arc),
+            Geometry::Plane { origin, normal } => {
+                b.plane(id, Some([rational(origin), rational(normal)])).map(|_| Shape::Plane)
+            }
+            Geometry::Ellipse { .. } => return Err(not_in_model("an ellipse")),
+            Geometry::EllipticalArc { .. } => return Err(not_in_model("an elliptical arc")),
+            Geometry::BSpline { .. } => return Err(not_in_model("a B-spline")),
+        }
+        .map_err(e)
+    }
+
+    /// The model id of a reference, and what it is.
+    fn target(&mut self, r: &Ref) -> Result<Target, String> {
+        let Some(&shape) = self.shapes.get(&r.entity) else {
+            return Err(match self.dropped.get(&r.entity) {
+                Some(_) => format!("refers to {}, which was skipped", r.entity),
+                None => format!("refers to {}, which is not in the sketch", r.entity),
+            });
+        };
+        let point = |suffix: &str| Target {
+            id: format!("{}.{suffix}", r.entity),
+            class: Class::Point,
+            shape: None,
+        };
+        match (r.part, shape) {
+            (Part::Whole, _) => Ok(Target {
+                id: r.entity.clone(),
+                class: match shape {
+                    Shape::Point => Class::Point,
+                    Shape::Segment | Shape::Line => Class::Straight,
+                    Shape::Circle | Shape::Arc => Class::Round,
+                    Shape::Plane => Class::Plane,
+                },
+                shape: Some(shape),
+            }),
+            (Part::Start, Shape::Segment | Shape::Arc) => Ok(point("start")),
+            (Part::End, Shape::Segment | Shape::Arc) => Ok(point("end")),
+            (Part::Center, Shape::Circle | Shape::Arc) => Ok(point("center")),
+            (part, shape) => Err(format!(
+                "refers to the {} of {} ({}), which the gcs model does not name",
+                part_name(part),
+                r.entity,
+                shape_name(shape)
+            )),
+        }
+    }
+
+    fn push(
+        &mut self,
+        kind: K,
+        id: &str,
+        args: &[&Target],
+        value: Option<BigRational>,
+    ) -> Result<(), String> {
+        let ids: Vec<&str> = args.iter().map(|t| t.id.as_str()).collect();
+        self.builder.constraint(kind, id, &ids, value).map(|_| ()).map_err(|e| e.to_string())
+    }
+
+    /// Pushes the parts of a constraint that CAD writes as one and gcs as several: the first
+    /// keeps the id, the others are `<id>#<suffix>`. A failure after the first part says what
+    /// was imported.
+    fn push_all(
+        &mut self,
+        id: &str,
+        parts: &[(K, &str, Vec<&Target>, Option<BigRational>)],
+    ) -> Result<(), String> {
+        let mut done = Vec::new();
+        for (kind, suffix, args, value) in parts {
+            let part_id = if suffix.is_empty() { id.to_owned() } else { format!("{id}#{suffix}") };
+            if let Err(e) = self.push(*kind, &part_id, args, value.clone()) {
+                return Err(if done.is_empty() {
+                    e
+                } else {
+                    format!("{e} (only {} imported)", done.join(", "))
+                });
+            }
+            done.push(part_id);
+        }
+        Ok(())
+    }
+
+    fn x_axis(&mut self) -> Result<Target, String> {
+        if self.builder.system().entity_by_id(X_AXIS).is_none() {
+            let (zero, one) =
+                (BigRational::from_integer(0.into()), BigRational::from_integer(1.into()));
+            let at = [vec![zero.clone(), zero.clone()], vec![one, zero]];
+            self.builder.line(X_AXIS, Some(at)).map_err(|e| e.to_string())?;
+            let fixed = format!("{X_AXIS}#fixed");
+            self.builder.constraint(K::Fix, &fixed, &[X_AXIS], None).map_err(|e| e.to_string())?;
+        }
+        Ok(Target { id: X_AXIS.to_owned(), class: Class::Straight, shape: Some(Shape::Line) })
+    }
+
+    fn constraint(&mut self, c: &Constraint) -> Result<(), String> {
+        let targets = c.refs.iter().map(|r| self.target(r)).collect::<Result<Vec<_>, _>>()?;
+        let value = || -> Result<BigRational, String> {
+            c.value.as_ref().map(|v| v.0.clone()).ok_or_else(|| "no value".to_owned())
+        };
+        let zero = || BigRational::from_integer(0.into());
+        let classes: Vec<Class> = targets.iter().map(|t| t.class).collect();
+        let t = &targets;
+        use Class::{Point as P, Round as R, Straight as S};
+        let unsupported = |what: &str| Err(not_in_model(what));
+        match (c.kind, classes.as_slice()) {
+            (Kind::Coincident, [P, P]) => self.push(K::Coincident, &c.id, &[&t[0], &t[1]], None),
+            (Kind::PointOnObject, [P, S | R | Class::Plane]) => {
+                self.push(K::Incident, &c.id, &[&t[0], &t[1]], None)
+            }
+            (Kind::Horizontal, [S]) => self.push(K::Horizontal, &c.id, &[&t[0]], None),
+            (Kind::Vertical, [S]) => self.push(K::Vertical, &c.id, &[&t[0]], None),
+            (Kind::Horizontal, [P, P]) => {
+                self.push(K::DistanceY, &c.id, &[&t[0], &t[1]], Some(zero()))
+            }
+            (Kind::Vertical, [P, P]) => {
+                self.push(K::DistanceX, &c.id, &[&t[0], &t[1]], Some(zero()))
+            }
+            (Kind::Parallel, [S | Class::Plane, S | Class::Plane]) => {
+                self.push(K::Parallel, &c.id, &[&t[0], &t[1]], None)
+            }
+            (Kind::Perpendicular, [S | Class::Plane, S | Class::Plane]) => {
+                self.push(K::Perpendicular, &c.id, &[&t[0], &t[1]], None)
+            }
+            (Kind::Tangent, [S, R] | [R, S] | [R, R]) => {
+                self.push(K::Tangent, &c.id, &[&t[0], &t[1]], None)
+            }
+            (Kind::Tangent, _) => unsupported("a tangency other than line–circle or circle–circle"),
+            (Kind::TangentAtEnds | Kind::PerpendicularAtEnds, [P, P]) => self.at_ends(c, t),
+            (Kind::Equal, [S, S]) => self.push(K::EqualLength, &c.id, &[&t[0], &t[1]], None),
+            (Kind::Equal, [R, R]) => self.push(K::EqualRadius, &c.id, &[&t[0], &t[1]], None),
+            (Kind::Equal, _) => unsupported("equal length of a segment and an arc"),
+            (Kind::Symmetric, [P, P, P | S]) => {
+                self.push(K::Symmetric, &c.id, &[&t[0], &t[1], &t[2]], None)
+            }
+            (Kind::Distance, [P, P] | [P, S] | [S, P] | [S, S] | [P, Class::Plane]) => {
+                let v = value()?;
+                self.push(K::Distance, &c.id, &[&t[0], &t[1]], Some(abs(v)))
+            }
+            (Kind::Distance, _) => unsupported("a distance to a circle or an arc"),
+            (Kind::Length, [S]) if t[0].shape == Some(Shape::Segment) => {
+                let (a, b) = self.ends(&t[0]);
+                self.push(K::Distance, &c.id, &[&a, &b], Some(abs(value()?)))
+            }
+            (Kind::Length, _) => unsupported("the length of an arc or an infinite line"),
+            (Kind::DistanceX | Kind::DistanceY, [P, P] | [S]) => {
+                let kind = if c.kind == Kind::DistanceX { K::DistanceX } else { K::DistanceY };
+                let (a, b) = if t.len() == 2 {
+                    (t[0].clone(), t[1].clone())
+                } else if t[0].shape == Some(Shape::Segment) {
+                    self.ends(&t[0])
+                } else {
+                    return unsupported("a horizontal or vertical distance along an infinite line");
+                };
+                self.push(kind, &c.id, &[&a, &b], Some(value()?))
+            }
+            (Kind::Angle, [S, S]) => self.push(K::Angle, &c.id, &[&t[0], &t[1]], Some(value()?)),
+            (Kind::AngleToXAxis, [S]) => {
+                let axis = self.x_axis()?;
+                self.push(K::Angle, &c.id, &[&t[0], &axis], Some(value()?))
+            }
+            (Kind::Radius, [R]) => self.push(K::Radius, &c.id, &[&t[0]], Some(value()?)),
+            (Kind::Diameter, [R]) => {
+                let half = value()? / BigRational::from_integer(2.into());
+                self.push(K::Radius, &c.id, &[&t[0]], Some(half))
+            }
+            (Kind::Fix, [_]) => self.push(K::Fix, &c.id, &[&t[0]], None),
+            (Kind::Midpoint, [P, S]) if t[1].shape == Some(Shape::Segment) => {
+                self.push(K::Midpoint, &c.id, &[&t[0], &t[1]], None)
+            }
+            (Kind::Midpoint, _) => unsupported("the midpoint of an arc or an infinite line"),
+            (Kind::Concentric, [R | P, R] | [R, P]) => {
+                self.push(K::Concentric, &c.id, &[&t[0], &t[1]], None)
+            }
+            (Kind::Collinear, [S, S]) => {
+                // Parallel, and a point of one on the other.
+                let (on, other) = if t[1].shape == Some(Shape::Segment) {
+                    (self.ends(&t[1]).0, &t[0])
+                } else if t[0].shape == Some(Shape::Segment) {
+                    (self.ends(&t[0]).0, &t[1])
+                } else {
+                    return unsupported("two collinear infinite lines");
+                };
+                self.push_all(
+                    &c.id,
+                    &[
+                        (K::Parallel, "", vec![&t[0], &t[1]], None),
+                        (K::Incident, "on", vec![&on, other], None),
+                    ],
+                )
+            }
+            (Kind::EqualAngle, _) => unsupported("equal angles"),
+            (Kind::LengthRatio, _) => unsupported("a ratio of lengths"),
+            (Kind::LengthDifference, _) => unsupported("a difference of lengths"),
+            (Kind::EqualLineArcLength, _) => unsupported("a segment as long as an arc"),
+            (Kind::EqualPointLineDistances, _) => unsupported("equal point–line distances"),
+            (Kind::EqualLengthPointLineDistance, _) => {
+                unsupported("a length equal to a point–line distance")
+            }
+            (Kind::ArcLength, _) => unsupported("an arc length"),
+            (kind, _) => Err(format!(
+                "{kind:?} on {} is not a combination the gcs model has",
+                classes.iter().map(|c| class_name(*c)).collect::<Vec<_>>().join(", ")
+            )),
+        }
+    }
+
+    /// A segment's end points as targets.
+    fn ends(&self, segment: &Target) -> (Target, Target) {
+        let point = |part: &str| Target {
+            id: format!("{}.{part}", segment.id),
+            class: Class::Point,
+            shape: None,
+        };
+        (point("start"), point("end"))
+    }
+
+    /// Tangency or perpendicularity at shared end points: the curves of the two end points
+    /// meet there (`<id>#coincident`) and are tangent (`TangentAt`, or `Parallel` for two
+    /// straight curves) or perpendicular there (`Perpendicular` for two straight curves).
+    fn at_ends(&mut self, c: &Constraint, t: &[Target]) -> Result<(), String> {
+        let curve = |r: &Ref| -> Result<Target, String> {
+            if !matches!(r.part, Part::Start | Part::End) {
+                return Err("refers to a point that is not a curve's end".to_owned());
+            }
+            Ok(Target { id: r.entity.clone(), class: Class::Point, shape: None })
+        };
+        let (a, b) = (curve(&c.refs[0])?, curve(&c.refs[1])?);
+        let shape = |id: &str| {
+            self.shapes.get(id).copied().ok_or_else(|| format!("refers to {id}, which is unknown"))
+        };
+        let (sa, sb) = (shape(&a.id)?, shape(&b.id)?);
+        let round = |s: Shape| matches!(s, Shape::Circle | Shape::Arc);
+        let meet = (K::Coincident, "coincident", vec![&t[0], &t[1]], None);
+        match (c.kind, round(sa), round(sb)) {
+            (Kind::TangentAtEnds, false, false) => {
+                self.push_all(&c.id, &[(K::Parallel, "", vec![&a, &b], None), meet])
+            }
+            (Kind::TangentAtEnds, _, _) => {
+                self.push_all(&c.id, &[(K::TangentAt, "", vec![&a, &b, &t[0]], None), meet])
+            }
+            (_, false, false) => {
+                self.push_all(&c.id, &[(K::Perpendicular, "", vec![&a, &b], None), meet])
+            }
+            _ => Err(not_in_model("a perpendicularity at the end of an arc")),
+        }
+    }
+}
+
+fn abs(v: BigRational) -> BigRational {
+    if v < BigRational::from_integer(0.into()) { -v } else { v }
+}
+
+fn not_in_model(what: &str) -> String {
+    format!("{what}: not in the gcs model yet")
+}
+
+fn part_name(part: Part) -> String {
+    match part {
+        Part::Whole => "whole".to_owned(),
+        Part::Start => "start point".to_owned(),
+        Part::End => "end point".to_owned(),
+        Part::Center => "centre".to_owned(),
+        Part::Focus1 => "first focus".to_owned(),
+        Part::Focus2 => "second focus".to_owned(),
+        Part::MajorStart | Part::MajorEnd => "major axis end".to_owned(),
+        Part::MinorStart | Part::MinorEnd => "minor axis end".to_owned(),
+        Part::Pole(i) => format!("control point {i}"),
+        Part::Origin => "origin".to_owned(),
+    }
+}
+
+fn shape_name(shape: Shape) -> &'static str {
+    match shape {
+        Shape::Point => "a point",
+        Shape::Segment => "a segment",
+        Shape::Line => "a line",
+        Shape::Circle => "a circle",
+        Shape::Arc => "an arc",
+        Shape::Plane => "a plane",
+    }
+}
+
+fn class_name(class: Class) -> &'static str {
+    match class {
+        Class::Point => "a point",
+        Class::Straight => "a line",
+        Class::Round => "a circle",
+        Class::Plane => "a plane",
+    }
+}
