@@ -13,11 +13,15 @@
 //! - **Constraints** keep the source's id. Where one CAD constraint says two things it becomes
 //!   two gcs constraints, the second named after the first: tangency at shared end points is
 //!   `TangentAt` (id) + `Coincident` (`<id>#coincident`) — one transversal formulation, never
-//!   incidence + tangency, which is singular at every solution; collinear lines are `Parallel`
+//!   incidence + tangency, which is singular at every solution. For the same reason a tangency
+//!   between two curves that the sketch joins elsewhere (an end point of one coincident with an
+//!   end point of the other, or on the other: how Onshape and FreeCAD write many fillets) is
+//!   `TangentAt` that point; collinear lines are `Parallel`
 //!   and `Incident` (`<id>#on`). Horizontal (vertical) points are `DistanceY` (`DistanceX`) 0, a
 //!   length is the distance between the segment's end points, a diameter a radius of half the
 //!   value, equal lengths or radii `EqualLength` or `EqualRadius`, a line's angle to the x axis
 //!   an `Angle` to a fixed horizontal line `#x-axis`.
+//! - **Numbers** are snapped to 10^-9 ([`snap`]): CAD float noise off, the drawing unmoved.
 //! - **Reference (non-driving) dimensions** are measured, not imposed: not lowered, listed in
 //!   [`Lowered::reference`].
 //! - Whatever cannot be expressed is listed in [`Lowered::skipped`] with its reason (after
@@ -91,6 +95,10 @@ const X_AXIS: &str = "#x-axis";
 
 struct Lowering {
     builder: SystemBuilder,
+    /// Points joined by the sketch's coincidences: point id → representative.
+    joined: std::collections::HashMap<String, String>,
+    /// `(point id, curve id)` of the sketch's point-on-curve constraints.
+    on_curve: std::collections::HashSet<(String, String)>,
     shapes: std::collections::HashMap<String, Shape>,
     /// Entities of the sketch not lowered, with the reason.
     dropped: std::collections::HashMap<String, String>,
@@ -104,6 +112,8 @@ pub fn lower(sketch: &Sketch) -> Lowered {
     let dim = if sketch.dim == 3 { Dim::Three } else { Dim::Two };
     let mut l = Lowering {
         builder: SystemBuilder::new(sketch.name.clone(), dim),
+        joined: Default::default(),
+        on_curve: Default::default(),
         shapes: Default::default(),
         dropped: Default::default(),
         skipped: sketch.skipped.clone(),
@@ -126,6 +136,7 @@ pub fn lower(sketch: &Sketch) -> Lowered {
             }
         }
     }
+    l.find_joints(&sketch.constraints);
     for c in &sketch.constraints {
         if !c.driving {
             l.reference.push(c.id.clone());
@@ -145,8 +156,25 @@ pub fn lower(sketch: &Sketch) -> Lowered {
     }
 }
 
+/// The grid numbers are snapped to: 10^-9 (a nanometre, a nano-degree).
+const SNAP_PLACES: u32 = 9;
+
+/// A number of the file on the grid of [`SNAP_PLACES`] decimals: unchanged when it has at most
+/// that many, else rounded to the nearest point of the grid. CAD programs store doubles:
+/// `10.000000000000002` is 10 with float noise, which would hide that an arc's end lies on its
+/// circle or a point on an axis; the rounding moves nothing by more than half a nanometre, far
+/// below any CAD program's precision, and far above its float noise.
+pub fn snap(q: &BigRational) -> BigRational {
+    let scale = BigRational::from_integer(num_bigint::BigInt::from(10u32).pow(SNAP_PLACES));
+    let scaled = q * &scale;
+    if scaled.is_integer() {
+        return q.clone();
+    }
+    scaled.round() / scale
+}
+
 fn rational(coords: &[crate::ir::Number]) -> Vec<BigRational> {
-    coords.iter().map(|n| n.0.clone()).collect()
+    coords.iter().map(|n| snap(&n.0)).collect()
 }
 
 impl Lowering {
@@ -169,7 +197,7 @@ impl Lowering {
                 b.line(id, Some([rational(a), rational(other)])).map(|_| Shape::Line)
             }
             Geometry::Circle { center, radius } => {
-                b.circle(id, Some(rational(center)), Some(radius.0.clone())).map(|_| Shape::Circle)
+                b.circle(id, Some(rational(center)), Some(snap(&radius.0))).map(|_| Shape::Circle)
             }
             Geometry::Arc { center, start, end } => b
                 .arc(id, Some(rational(center)), None, Some(rational(start)), Some(rational(end)))
@@ -218,6 +246,61 @@ impl Lowering {
                 shape_name(shape)
             )),
         }
+    }
+
+    /// The joints the sketch states: coincident points (by union-find over the driving
+    /// `Coincident`s) and points on curves (the driving `PointOnObject`s).
+    fn find_joints(&mut self, constraints: &[Constraint]) {
+        for c in constraints.iter().filter(|c| c.driving) {
+            let targets: Vec<Target> = c.refs.iter().filter_map(|r| self.target(r).ok()).collect();
+            match (c.kind, targets.as_slice()) {
+                (Kind::Coincident, [a, b])
+                    if a.class == Class::Point && b.class == Class::Point =>
+                {
+                    let (ra, rb) = (self.root(&a.id), self.root(&b.id));
+                    if ra != rb {
+                        self.joined.insert(ra, rb);
+                    }
+                }
+                (Kind::PointOnObject, [p, curve]) if p.class == Class::Point => {
+                    self.on_curve.insert((p.id.clone(), curve.id.clone()));
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn root(&self, id: &str) -> String {
+        let mut id = id.to_owned();
+        while let Some(next) = self.joined.get(&id) {
+            id = next.clone();
+        }
+        id
+    }
+
+    /// Where the sketch joins curves `a` and `b`: an end point of one that the sketch makes
+    /// coincide with an end point of the other, or puts on the other.
+    fn joint(&self, a: &Target, b: &Target) -> Option<Target> {
+        let ends = |t: &Target| -> Vec<String> {
+            match t.shape {
+                Some(Shape::Segment | Shape::Arc) => {
+                    vec![format!("{}.start", t.id), format!("{}.end", t.id)]
+                }
+                _ => Vec::new(),
+            }
+        };
+        let point = |id: &String| Target { id: id.clone(), class: Class::Point, shape: None };
+        for ea in ends(a) {
+            for eb in ends(b) {
+                if self.root(&ea) == self.root(&eb) {
+                    return Some(point(&ea));
+                }
+            }
+            if self.on_curve.contains(&(ea.clone(), b.id.clone())) {
+                return Some(point(&ea));
+            }
+        }
+        ends(b).iter().find(|eb| self.on_curve.contains(&((*eb).clone(), a.id.clone()))).map(point)
     }
 
     fn push(
@@ -269,7 +352,7 @@ impl Lowering {
     fn constraint(&mut self, c: &Constraint) -> Result<(), String> {
         let targets = c.refs.iter().map(|r| self.target(r)).collect::<Result<Vec<_>, _>>()?;
         let value = || -> Result<BigRational, String> {
-            c.value.as_ref().map(|v| v.0.clone()).ok_or_else(|| "no value".to_owned())
+            c.value.as_ref().map(|v| snap(&v.0)).ok_or_else(|| "no value".to_owned())
         };
         let zero = || BigRational::from_integer(0.into());
         let classes: Vec<Class> = targets.iter().map(|t| t.class).collect();
@@ -295,9 +378,11 @@ impl Lowering {
             (Kind::Perpendicular, [S | Class::Plane, S | Class::Plane]) => {
                 self.push(K::Perpendicular, &c.id, &[&t[0], &t[1]], None)
             }
-            (Kind::Tangent, [S, R] | [R, S] | [R, R]) => {
-                self.push(K::Tangent, &c.id, &[&t[0], &t[1]], None)
-            }
+            (Kind::Tangent, [S, R] | [R, S] | [R, R]) => match self.joint(&t[0], &t[1]) {
+                // Joined by the sketch: tangent there (transversal), not "somewhere".
+                Some(at) => self.push(K::TangentAt, &c.id, &[&t[0], &t[1], &at], None),
+                None => self.push(K::Tangent, &c.id, &[&t[0], &t[1]], None),
+            },
             (Kind::Tangent, _) => unsupported("a tangency other than line–circle or circle–circle"),
             (Kind::TangentAtEnds | Kind::PerpendicularAtEnds, [P, P]) => self.at_ends(c, t),
             (Kind::Equal, [S, S]) => self.push(K::EqualLength, &c.id, &[&t[0], &t[1]], None),

@@ -228,3 +228,55 @@ fn what_cannot_be_expressed_is_skipped_with_its_dependents() {
     assert_eq!(reasons[4], ("q", "refers to nope, which is not in the sketch"));
     assert_eq!(l.system.written_entities(), 2);
 }
+
+/// Onshape's and FreeCAD's fillets: a coincidence of the end points and a tangency of the
+/// curves. The tangency lowers at the joint (transversal), and float noise is snapped off.
+#[test]
+fn a_tangency_of_joined_curves_is_at_the_joint() {
+    let noisy = Number::parse("10.000000000000002").unwrap();
+    let s = sketch(
+        vec![
+            entity("l", Geometry::Segment { start: vec![n(-20), n(0)], end: vec![n(0), n(0)] }),
+            entity(
+                "a",
+                Geometry::Arc {
+                    center: vec![n(0), n(10)],
+                    start: vec![n(0), n(0)],
+                    end: vec![n(10), noisy],
+                },
+            ),
+            entity("m", Geometry::Segment { start: vec![n(10), n(10)], end: vec![n(10), n(30)] }),
+            entity("c", Geometry::Circle { center: vec![n(0), n(40)], radius: n(10) }),
+        ],
+        vec![
+            constraint(
+                "j1",
+                Kind::Coincident,
+                vec![Ref::part("l", Part::End), Ref::part("a", Part::Start)],
+                None,
+            ),
+            constraint("t1", Kind::Tangent, vec![Ref::whole("l"), Ref::whole("a")], None),
+            constraint(
+                "j2",
+                Kind::PointOnObject,
+                vec![Ref::part("m", Part::Start), Ref::whole("a")],
+                None,
+            ),
+            constraint("t2", Kind::Tangent, vec![Ref::whole("a"), Ref::whole("m")], None),
+            constraint("t3", Kind::Tangent, vec![Ref::whole("m"), Ref::whole("c")], None),
+        ],
+    );
+    let l = lower(&s);
+    assert!(l.complete(), "{:?}", l.skipped);
+    assert_eq!(lowered(&l, "t1"), (ConstraintKind::TangentAt, strings(&["l", "a", "l.end"]), None));
+    assert_eq!(
+        lowered(&l, "t2"),
+        (ConstraintKind::TangentAt, strings(&["a", "m", "m.start"]), None)
+    );
+    assert_eq!(lowered(&l, "t3").0, ConstraintKind::Tangent, "not joined: tangent somewhere");
+    let end = l.system.entity_by_id("a.end").unwrap();
+    let gcs_model::entity::Geometry::Point { at: Some(at) } = &l.system.entity(end).geometry else {
+        panic!("a point")
+    };
+    assert_eq!(at[1], gcs_model::number::int(10), "the float noise is snapped off");
+}
