@@ -292,9 +292,7 @@ impl Placer<'_> {
     fn rational_normal(&mut self, pref: &[Q], n: usize) -> Vec<(Vec<Q>, Q)> {
         let k = if n == 3 { 2 } else { 3 };
         let w: Vec<f64> = pref[0..k].iter().map(qla::to_f64).collect();
-        let jitter: Vec<f64> = (0..k).map(|_| 1e-3 * (2.0 * self.rng.unit_f64() - 1.0)).collect();
-        let w: Vec<f64> = w.iter().zip(&jitter).map(|(a, b)| a + b).collect();
-        let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
+        let Some(u) = self.unit_near(&w) else { return Vec::new() };
         parallel_to(&u, n, None)
     }
 
@@ -302,16 +300,33 @@ impl Placer<'_> {
     /// from `other` to the preference `pref`.
     fn rational_direction(&mut self, pref: &[Q], other: &[Q]) -> Vec<(Vec<Q>, Q)> {
         let n = pref.len();
-        let w: Vec<f64> = pref
-            .iter()
-            .zip(other)
-            .map(|(a, b)| {
-                qla::to_f64(a) - qla::to_f64(b)
-                    + 1e-3 * self.scale * (2.0 * self.rng.unit_f64() - 1.0)
-            })
-            .collect();
-        let Some(u) = rational_unit(&w, 1000) else { return Vec::new() };
+        let w: Vec<f64> =
+            pref.iter().zip(other).map(|(a, b)| qla::to_f64(a) - qla::to_f64(b)).collect();
+        let Some(u) = self.unit_near(&w) else { return Vec::new() };
         parallel_to(&u, n, Some(other))
+    }
+
+    /// A random unit vector with exact coordinates (2 or 3 of them, as `w`), from the
+    /// rational parametrisation of the circle or the sphere ([`unit_at`]): over ℚ, at
+    /// parameters moved at random near those of `w`'s direction (the sketch's side, never
+    /// exactly `w`'s: a direction rounded to a few digits would put a line drawn horizontal
+    /// exactly horizontal, parallel to every horizontal line, a special position the
+    /// constraints do not ask for); modulo the prime, at uniform parameters (a residue has no
+    /// direction: `w` is then meaningless, and a uniform choice is what makes the witness
+    /// generic).
+    fn unit_near(&mut self, w: &[f64]) -> Option<Vec<Q>> {
+        if self.modular {
+            let params: Vec<Q> = (0..w.len() - 1)
+                .map(|_| Num::P(gcs_rank::ModP::new(self.rng.next_u64())))
+                .collect();
+            return unit_at(&params, false);
+        }
+        let (params, flip) = unit_params(w)?;
+        let params: Vec<Q> = params
+            .iter()
+            .map(|t| qla::approx(t + 1e-3 * (2.0 * self.rng.unit_f64() - 1.0), 1_000_000))
+            .collect();
+        unit_at(&params, flip)
     }
 
     /// A small random move (over ℚ, near the preference); modulo the prime a uniform residue:
@@ -650,6 +665,19 @@ impl Placer<'_> {
             let s = if attempt.is_multiple_of(2) { same } else { !same };
             return vec![vec![if s { Q::ONE } else { -Q::ONE }]];
         }
+        if self.modular {
+            // A uniform rotation: residues have no direction to be near.
+            let mut reflection = || {
+                (0..8).find_map(|_| {
+                    let v: Vec<Q> =
+                        (0..k).map(|_| Num::P(gcs_rank::ModP::new(self.rng.next_u64()))).collect();
+                    qla::reflection(&v)
+                })
+            };
+            let ha = reflection().unwrap_or_else(|| identity(k));
+            let hb = reflection().unwrap_or_else(|| identity(k));
+            return qla::matmul(&hb, &ha);
+        }
         // A rotation (det +1: the product of two Householder reflections, exactly orthogonal
         // for rational vectors) taking M's direction near P's. Rotations, not single
         // reflections: for the Plücker relation |d + m|² = |d − m|² a reflection would force
@@ -724,36 +752,49 @@ fn rank(rows: &[(Vec<Q>, Q)], n: usize) -> usize {
     }
 }
 
-/// A rational unit vector near the direction of `w` (2D: tangent half-angle; 3D: inverse
-/// stereographic projection), `None` for a zero vector.
-fn rational_unit(w: &[f64], den: i64) -> Option<Vec<Q>> {
+/// The parameters of the direction of `w` in the rational parametrisation of the unit circle
+/// or sphere ([`unit_at`]) and whether it is flipped, `None` for a zero vector.
+fn unit_params(w: &[f64]) -> Option<(Vec<f64>, bool)> {
     let norm = w.iter().map(|x| x * x).sum::<f64>().sqrt();
     if norm < 1e-300 {
         return None;
     }
     let w: Vec<f64> = w.iter().map(|x| x / norm).collect();
-    let one = Q::ONE;
-    let two = Q::from(2_i64);
     if w.len() == 2 {
-        // (cos θ, sin θ) = ((1 − t²), 2t)/(1 + t²), t = tan(θ/2); near θ = π use −t⁻¹ form.
+        // t = tan(θ/2), on the half circle of positive x (the other is flipped).
         let flip = w[0] < 0.0;
         let (c, s) = if flip { (-w[0], -w[1]) } else { (w[0], w[1]) };
-        let t = qla::approx(s / (1.0 + c), den);
-        let d = &one + &t * &t;
-        let mut u = vec![(&one - &t * &t) / &d, &two * &t / &d];
-        if flip {
-            u = u.into_iter().map(|x| -x).collect();
-        }
-        Some(u)
+        Some((vec![s / (1.0 + c)], flip))
     } else {
         // Stereographic from the pole opposite to w's z sign.
         let flip = w[2] < 0.0;
         let z = if flip { -w[2] } else { w[2] };
-        let s = qla::approx(w[0] / (1.0 + z), den);
-        let t = qla::approx(w[1] / (1.0 + z), den);
-        let d = &one + &s * &s + &t * &t;
-        let zq = (&one - &s * &s - &t * &t) / &d;
-        Some(vec![&two * &s / &d, &two * &t / &d, if flip { -zq } else { zq }])
+        Some((vec![w[0] / (1.0 + z), w[1] / (1.0 + z)], flip))
+    }
+}
+
+/// The unit vector of parameters `params` (2D: `((1 − t²), 2t)/(1 + t²)`, the tangent
+/// half-angle; 3D: the inverse stereographic projection of `(s, t)`), negated (2D) or
+/// mirrored in the plane `z = 0` (3D) when `flip`; exact for exact parameters, `None` when the
+/// denominator vanishes (only modulo the prime, in 3D).
+fn unit_at(params: &[Q], flip: bool) -> Option<Vec<Q>> {
+    let one = Q::ONE;
+    let two = Q::from(2_i64);
+    if let [t] = params {
+        let d = &one + t * t;
+        if d.is_zero() {
+            return None;
+        }
+        let u = [(&one - t * t) / &d, &two * t / &d];
+        Some(u.into_iter().map(|x| if flip { -x } else { x }).collect())
+    } else {
+        let (s, t) = (params.first()?, params.get(1)?);
+        let d = &one + s * s + t * t;
+        if d.is_zero() {
+            return None;
+        }
+        let zq = (&one - s * s - t * t) / &d;
+        Some(vec![&two * s / &d, &two * t / &d, if flip { -zq } else { zq }])
     }
 }
 
