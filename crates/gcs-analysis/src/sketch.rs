@@ -202,7 +202,7 @@ fn residuals(system: &System, layout: &Layout, x: &[BigRational]) -> (bool, Opti
     // Each coordinate's precision is its entity's: the finest among the entity's decimal
     // coordinates (a point written [1.5, 1.35] is written to two decimals, in x as in y; its
     // integers do not count — [12.3456789, 0] is written to seven).
-    let mut h: Vec<f64> = x.iter().map(precision).collect();
+    let mut h: Vec<f64> = x.iter().map(gcs_model::number::written_precision).collect();
     for e in system.entity_indices() {
         let columns = layout.columns(e);
         let decimals = columns.clone().filter(|&c| !x[c].is_integer());
@@ -219,7 +219,7 @@ fn residuals(system: &System, layout: &Layout, x: &[BigRational]) -> (bool, Opti
             let Some(value) = constraint.value.as_ref() else { continue };
             let Some(r) = equations.residual(c, &xf) else { continue };
             let difference = r.values.first().copied().unwrap_or(0.0);
-            let tolerance = precision(value);
+            let tolerance = gcs_model::number::written_precision(value);
             if difference.abs() <= tolerance {
                 continue;
             }
@@ -256,35 +256,6 @@ fn residuals(system: &System, layout: &Layout, x: &[BigRational]) -> (bool, Opti
         }
     }
     (worst.is_none(), worst.map(|w| w.2))
-}
-
-/// The precision a dimension is written with: half a unit of its last decimal (`3.1623`:
-/// 0.00005); an integer or a fraction is meant exactly (to rounding).
-fn precision(value: &BigRational) -> f64 {
-    let magnitude = value.abs().to_f64().unwrap_or(0.0);
-    let rounding = 1e-9 * magnitude.max(1.0);
-    let mut den = value.denom().clone();
-    let mut places = 0;
-    let ten = num_bigint::BigInt::from(10);
-    let (two, five) = (num_bigint::BigInt::from(2), num_bigint::BigInt::from(5));
-    // A terminating decimal has a denominator 2^a 5^b: it has max(a, b) places.
-    let (mut a, mut b) = (0, 0);
-    while (&den % &two).is_zero() {
-        den /= &two;
-        a += 1;
-    }
-    while (&den % &five).is_zero() {
-        den /= &five;
-        b += 1;
-    }
-    if den == num_bigint::BigInt::from(1) {
-        places = a.max(b);
-    }
-    if places == 0 {
-        return rounding;
-    }
-    let unit = 1.0 / ten.pow(places as u32).to_f64().unwrap_or(f64::INFINITY);
-    (0.5 * unit).max(rounding)
 }
 
 /// The classical special positions among `entities` (and the distances among `constraints`)
@@ -500,12 +471,11 @@ fn line2(system: &System, l: EntityIdx) -> Option<Vec<BigRational>> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use gcs_model::number::parse_exact;
 
     #[test]
     fn precision_follows_the_written_decimals() {
-        let p = |s: &str| precision(&parse_exact(s).unwrap());
+        let p = |s: &str| gcs_model::number::written_precision(&parse_exact(s).unwrap());
         assert!((p("3.1623") - 0.00005).abs() < 1e-15);
         assert!((p("12.5") - 0.05).abs() < 1e-15);
         assert!(p("40") < 1e-7);

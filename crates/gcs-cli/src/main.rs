@@ -11,6 +11,7 @@ mod analyze;
 mod batch;
 mod check;
 mod convert;
+mod solve;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -83,6 +84,25 @@ enum Command {
         /// Output format: human-readable text, or JSON Lines (one object per model).
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// Model files or directories.
+        #[arg(required = true, value_name = "PATH")]
+        paths: Vec<PathBuf>,
+    },
+    /// Solve models at their values, from their drawings: the status (solved, inconsistent,
+    /// failed), the worst residual, how far the drawing moved, the solved entities, and each
+    /// redundant constraint told consistent or conflicting (with the constraints it conflicts
+    /// with).
+    ///
+    /// The redundant constraints come from the exact analysis (or, where it finds no witness,
+    /// the float one); they are left out of the solve and measured at the solution.
+    Solve {
+        /// Output format: human-readable text, or JSON Lines (one object per model).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Also write each solved model as RON to DIR/<model name>.ron (readable by `gcs
+        /// analyze`).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -161,6 +181,7 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
         Command::Convert { input, output } => convert::run(&input, output.as_deref()),
+        Command::Solve { format, out, paths } => solve::run(&paths, format, out.as_deref()),
         Command::Analyze {
             backend,
             seed,

@@ -151,9 +151,24 @@ impl<'s> Equations<'s> {
     /// The entity-internal rows of entity `e` at `x` (normalisations of homogeneous
     /// coordinates, whose value is the scale, and the Plücker relation of a 3D line).
     pub fn internal<F: Field>(&self, e: EntityIdx, x: &[F]) -> Vec<SparseRow<F>> {
-        let Some(repr) = self.layout.repr(e) else { return Vec::new() };
+        self.internal_residuals(e, x).1
+    }
+
+    /// The entity-internal equations of entity `e` at `x` with their values (a solver's
+    /// residuals): the relations first, then the normalisation of homogeneous coordinates
+    /// (whose value is the scale, not a residual).
+    pub fn internal_residuals<F: Field>(
+        &self,
+        e: EntityIdx,
+        x: &[F],
+    ) -> (Vec<F>, Vec<SparseRow<F>>) {
+        let Some(repr) = self.layout.repr(e) else { return (Vec::new(), Vec::new()) };
         let local = Local::new(self.system, self.layout, &[e], x);
-        repr.internal_equations(local.coords(e)).iter().map(|r| grad_row(r, &local.cols)).collect()
+        let rows = repr.internal_equations(local.coords(e));
+        (
+            rows.iter().map(|r| r.value.clone()).collect(),
+            rows.iter().map(|r| grad_row(r, &local.cols)).collect(),
+        )
     }
 }
 

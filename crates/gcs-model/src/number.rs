@@ -225,6 +225,38 @@ pub fn one() -> BigRational {
     BigRational::one()
 }
 
+/// The precision a dimension is written with: half a unit of its last decimal (`3.1623`:
+/// 0.00005); an integer or a fraction is meant exactly (to rounding: 1e-9 of its magnitude).
+/// Shared by the drawing's check (gcs-analysis) and the solver's verdict on redundant
+/// dimensions (gcs-solve).
+pub fn written_precision(value: &BigRational) -> f64 {
+    let magnitude = num_traits::ToPrimitive::to_f64(&value.abs()).unwrap_or(0.0);
+    let rounding = 1e-9 * magnitude.max(1.0);
+    let mut den = value.denom().clone();
+    let mut places = 0;
+    let ten = num_bigint::BigInt::from(10);
+    let (two, five) = (num_bigint::BigInt::from(2), num_bigint::BigInt::from(5));
+    // A terminating decimal has a denominator 2^a 5^b: it has max(a, b) places.
+    let (mut a, mut b) = (0, 0);
+    while (&den % &two).is_zero() {
+        den /= &two;
+        a += 1;
+    }
+    while (&den % &five).is_zero() {
+        den /= &five;
+        b += 1;
+    }
+    if den == num_bigint::BigInt::from(1) {
+        places = a.max(b);
+    }
+    if places == 0 {
+        return rounding;
+    }
+    let unit =
+        1.0 / num_traits::ToPrimitive::to_f64(&ten.pow(places as u32)).unwrap_or(f64::INFINITY);
+    (0.5 * unit).max(rounding)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -229,6 +229,34 @@ impl System {
     pub fn naive_dof(&self) -> i64 {
         self.dof_sum() as i64 - self.doc_sum() as i64
     }
+    /// Replaces the sketch of entity `e` (a solver's result), keeping its kind and parts: the
+    /// new geometry must be of the same kind, built on the same entities, and valid.
+    ///
+    /// # Errors
+    /// A [`ModelError`] when the geometry is of another kind, names other parts, or is invalid
+    /// (a negative radius, a degenerate line).
+    pub fn set_sketch(&mut self, e: EntityIdx, geometry: Geometry) -> Result<(), ModelError> {
+        let entity = &self.entities[e.index()];
+        let same_parts = match (&entity.geometry, &geometry) {
+            (Geometry::Segment { from, to }, Geometry::Segment { from: f, to: t }) => {
+                from == f && to == t
+            }
+            (Geometry::Arc { start, end, .. }, Geometry::Arc { start: s, end: t, .. }) => {
+                start == s && end == t
+            }
+            (a, b) => a.kind() == b.kind(),
+        };
+        if !same_parts {
+            return Err(ModelError::new(ModelErrorKind::Degenerate {
+                id: entity.id.clone(),
+                field: None,
+                what: "a new sketch must keep the entity's kind and parts".to_owned(),
+            }));
+        }
+        geometry.check(&entity.id, self.dim)?;
+        self.entities[e.index()].geometry = geometry;
+        Ok(())
+    }
 
     /// Whether an entity has a complete sketch position (a composite entity: all its parts).
     pub fn has_position(&self, idx: EntityIdx) -> bool {

@@ -34,6 +34,7 @@ pub mod clusters;
 mod error;
 mod import;
 mod report;
+mod solve;
 mod structural;
 
 pub use check::CheckReport;
@@ -43,6 +44,7 @@ pub use report::{
     ArithmeticName, BackendName, ProofName, RedundantReport, Report, SCHEMA, WitnessName,
     failure_json, text,
 };
+pub use solve::{CheckedReport, SolveReport};
 pub use structural::{
     DmReport, DorSource, MethodReport, PartReport, Structural, StructuralReport, VerdictName,
 };

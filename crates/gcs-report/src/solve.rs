@@ -1,0 +1,229 @@
+//! The report of `gcs solve` (format §4, "Solving"): the status, the worst residual, how far
+//! the drawing moved, the solved entities in the model file's field names, and each redundant
+//! constraint measured at the solution — consistent, or conflicting with its spanning group.
+
+use gcs_jacobian::Layout;
+use gcs_model::System;
+use gcs_model::entity::Geometry;
+use gcs_solve::Solution;
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value, json};
+
+use crate::report::SCHEMA;
+
+/// A redundant constraint measured at the solution.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CheckedReport {
+    /// Its id.
+    pub constraint: String,
+    /// Its residual at the solution: for a dimension the measure minus the value (model units
+    /// or degrees), for a parameter-free constraint its largest polynomial residual.
+    pub residual: f64,
+    /// The largest residual that still agrees: the written precision of the values in the
+    /// dependency, plus the tolerance.
+    pub allowance: f64,
+    /// Beyond the tolerance: it contradicts its spanning group.
+    pub conflicting: bool,
+    /// The constraints it is redundant with.
+    pub spanning_group: Vec<String>,
+}
+
+/// One model's solve report, in the order of its fields in the JSON line.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveReport {
+    /// [`SCHEMA`].
+    pub schema: u32,
+    /// The model's name.
+    pub model: String,
+    /// The file, as given.
+    pub file: String,
+    /// `solved`, `inconsistent` or `failed`.
+    pub status: String,
+    /// The largest residual of the constraints solved, relative (as `residual`).
+    pub max_residual: f64,
+    /// The largest displacement of a coordinate (points, centres, radii), in model units.
+    pub moved: f64,
+    /// The solved entities with their sketch fields, as the model file names them.
+    pub entities: Vec<Value>,
+    /// The redundant constraints that conflict (a subset of `redundant`).
+    pub conflicting: Vec<CheckedReport>,
+    /// Every fully redundant constraint, measured at the solution.
+    pub redundant: Vec<CheckedReport>,
+    /// When the solve failed: the constraint with the largest residual.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub worst: Option<String>,
+    /// The relative tolerance.
+    pub tolerance: f64,
+    /// The model's size: its largest coordinate (at least 1).
+    pub scale: f64,
+    /// Gauss–Newton steps.
+    pub iterations: usize,
+    /// The backend whose analysis named the redundant constraints.
+    pub analysis_backend: String,
+    /// For a model read from a CAD file: the import section (flattened into the line).
+    #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
+    pub import: Option<crate::ImportReport>,
+}
+
+fn numbers(x: &[f64]) -> Value {
+    Value::Array(x.iter().map(|v| json!(v)).collect())
+}
+
+/// An entity's solved sketch fields, as a JSON object with its id (`None` for entities without
+/// coordinates of their own: segments, and the named points their curves carry).
+fn entity_json(
+    system: &System,
+    layout: &Layout,
+    e: gcs_model::EntityIdx,
+    x: &[f64],
+) -> Option<Value> {
+    let entity = system.entity(e);
+    if entity.owner.is_some() {
+        return None;
+    }
+    let cols = layout.columns(e);
+    let c = &x[cols];
+    let mut m = Map::new();
+    m.insert("id".into(), json!(entity.id));
+    let coords_of = |p: gcs_model::EntityIdx| {
+        let cols = layout.columns(p);
+        numbers(&x[cols])
+    };
+    match &entity.geometry {
+        Geometry::Point { .. } => {
+            m.insert("at".into(), numbers(c));
+        }
+        Geometry::Circle { .. } | Geometry::Sphere { .. } => {
+            let n = c.len() - 1;
+            m.insert("center".into(), numbers(&c[..n]));
+            m.insert("radius".into(), json!(c[n]));
+        }
+        Geometry::Arc { start, end, .. } => {
+            let n = c.len() - 1;
+            m.insert("center".into(), numbers(&c[..n]));
+            m.insert("radius".into(), json!(c[n]));
+            m.insert("start".into(), coords_of(*start));
+            m.insert("end".into(), coords_of(*end));
+        }
+        Geometry::Line { .. } | Geometry::Plane { .. } => {
+            // Through the representation back to the file's fields.
+            let repr = layout.repr(e)?;
+            let q: Option<Vec<_>> =
+                c.iter().map(|v| gcs_model::number::rational_from_f64_decimal(*v)).collect();
+            let g = repr.to_sketch(&q?, &entity.geometry);
+            let (Geometry::Line { at: Some([p, r]) } | Geometry::Plane { at: Some([p, r]) }) = g
+            else {
+                return None;
+            };
+            let f = |v: &Vec<gcs_rank::BigRational>| {
+                numbers(
+                    &v.iter()
+                        .map(|q| num_traits::ToPrimitive::to_f64(q).unwrap_or(f64::NAN))
+                        .collect::<Vec<_>>(),
+                )
+            };
+            m.insert("at".into(), Value::Array(vec![f(&p), f(&r)]));
+        }
+        Geometry::Segment { .. } => return None,
+    }
+    Some(Value::Object(m))
+}
+
+impl SolveReport {
+    /// The report of one solved model.
+    pub fn new(
+        system: &System,
+        file: &str,
+        solution: &Solution,
+        tolerance: f64,
+        analysis_backend: &str,
+    ) -> SolveReport {
+        let layout = Layout::new(system);
+        let id = |c: gcs_model::ConstraintIdx| system.constraint(c).id.clone();
+        let redundant: Vec<CheckedReport> = solution
+            .redundant
+            .iter()
+            .map(|r| CheckedReport {
+                constraint: id(r.constraint),
+                residual: r.residual,
+                allowance: r.allowance,
+                conflicting: r.conflicting,
+                spanning_group: r.spanning_group.iter().map(|c| id(*c)).collect(),
+            })
+            .collect();
+        SolveReport {
+            schema: SCHEMA,
+            model: system.name().to_owned(),
+            file: file.to_owned(),
+            status: solution.status.name().to_owned(),
+            max_residual: solution.max_residual,
+            moved: solution.moved,
+            entities: system
+                .entity_indices()
+                .filter_map(|e| entity_json(system, &layout, e, &solution.x))
+                .collect(),
+            conflicting: redundant.iter().filter(|r| r.conflicting).cloned().collect(),
+            redundant,
+            worst: solution.worst.map(id),
+            tolerance,
+            scale: solution.scale,
+            iterations: solution.iterations,
+            analysis_backend: analysis_backend.to_owned(),
+            import: None,
+        }
+    }
+
+    /// The same report with the import section of a model read from a CAD file.
+    pub fn with_import(mut self, import: Option<crate::ImportReport>) -> SolveReport {
+        self.import = import;
+        self
+    }
+
+    /// One line of JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_default()
+    }
+
+    /// The report for people: the status, the worst residual, how far the drawing moved, the
+    /// conflicts in CAD words and the consistent redundancies.
+    pub fn text(&self) -> String {
+        let mut out = format!("{}: {}\n", self.file, self.model);
+        let status = match self.status.as_str() {
+            "solved" => "solved: every constraint holds".to_owned(),
+            "inconsistent" => format!(
+                "INCONSISTENT: {} redundant constraint{} disagree{} with the others (the rest is solved)",
+                self.conflicting.len(),
+                if self.conflicting.len() == 1 { "" } else { "s" },
+                if self.conflicting.len() == 1 { "s" } else { "" }
+            ),
+            _ => format!(
+                "FAILED: the solver did not converge{}",
+                self.worst.as_ref().map(|w| format!(" (worst: {w})")).unwrap_or_default()
+            ),
+        };
+        out.push_str(&format!("  status: {status}\n"));
+        out.push_str(&format!(
+            "  worst residual {:.1e} of the model's size {}; the drawing moved by {:.6} at most\n",
+            self.max_residual, self.scale, self.moved
+        ));
+        for r in &self.redundant {
+            if r.conflicting {
+                out.push_str(&format!(
+                    "  conflicting: {} is off by {:.6} (written precision allows {:.1e}) given {}: change one value or delete one of them\n",
+                    r.constraint,
+                    r.residual,
+                    r.allowance,
+                    r.spanning_group.join(", ")
+                ));
+            } else {
+                out.push_str(&format!(
+                    "  redundant (consistent): {}: remove it or one of: {}\n",
+                    r.constraint,
+                    r.spanning_group.join(", ")
+                ));
+            }
+        }
+        out.truncate(out.trim_end().len());
+        out
+    }
+}

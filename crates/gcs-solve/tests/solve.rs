@@ -1,0 +1,128 @@
+//! The solver at the user's values: a sketch solves from a rough drawing keeping its
+//! orientation; a redundant dimension that agrees is consistent, one that disagrees conflicts
+//! with its spanning group; the solved model, analysed again, has the same verdict and a
+//! drawing that satisfies it; every example of data/ solves.
+
+use gcs_analysis::{AnalysisOptions, analyze};
+use gcs_model::System;
+use gcs_solve::{SolveOptions, Status, solve, solved_system};
+
+fn model(text: &str) -> System {
+    System::from_ron_str(text, None).unwrap()
+}
+
+fn run(system: &System) -> gcs_solve::Solution {
+    let analysis = analyze(system, &AnalysisOptions::default()).unwrap();
+    solve(system, &analysis, &SolveOptions::default()).unwrap()
+}
+
+fn rectangle(top: &str) -> System {
+    model(&format!(
+        r#"System(name: "r", dim: 2, entities: [
+        Point(id: "p1", at: [10, 5]), Point(id: "p2", at: [70, 5]),
+        Point(id: "p3", at: [70, 45]), Point(id: "p4", at: [10, 45]),
+        Segment(id: "bottom", from: "p1", to: "p2"), Segment(id: "right", from: "p2", to: "p3"),
+        Segment(id: "top", from: "p3", to: "p4"), Segment(id: "left", from: "p4", to: "p1")],
+      constraints: [Fix(id: "fix_p1", a: "p1"),
+        Horizontal(id: "h_bottom", a: "bottom"), Horizontal(id: "h_top", a: "top"),
+        Vertical(id: "v_right", a: "right"), Vertical(id: "v_left", a: "left"),
+        Distance(id: "width", a: "p1", b: "p2", value: 40),
+        Distance(id: "height", a: "p2", b: "p3", value: 30),
+        Distance(id: "width_top", a: "p4", b: "p3", value: {top})])"#
+    ))
+}
+
+fn point(system: &System, x: &[f64], id: &str) -> (f64, f64) {
+    let layout = gcs_jacobian::Layout::new(system);
+    let cols = layout.columns(system.entity_by_id(id).unwrap());
+    (x[cols.start], x[cols.start + 1])
+}
+
+#[test]
+fn a_consistent_redundant_dimension_is_not_a_conflict() {
+    let s = rectangle("40");
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Solved, "{sol:?}");
+    assert!(sol.max_residual <= 1e-9);
+    let (x2, y2) = point(&s, &sol.x, "p2");
+    let (x3, y3) = point(&s, &sol.x, "p3");
+    assert!((x2 - 50.0).abs() < 1e-6 && (y2 - 5.0).abs() < 1e-6, "({x2}, {y2})");
+    assert!((x3 - 50.0).abs() < 1e-6 && (y3 - 35.0).abs() < 1e-6, "({x3}, {y3})");
+    assert!((sol.moved - 20.0).abs() < 1e-6, "the right side moved 20 to the left");
+    let [r] = sol.redundant.as_slice() else { panic!("one redundant: {:?}", sol.redundant) };
+    assert_eq!(s.constraint(r.constraint).id, "width_top");
+    assert!(!r.conflicting && r.residual.abs() <= 1e-9);
+}
+
+/// Values written to four decimals (a kite whose sixth distance is √10 ≈ 3.1623) agree within
+/// their written precision: consistent, not a conflict.
+#[test]
+fn values_agree_within_their_written_precision() {
+    let s = gcs_suite::load("data/paper/kite.ron");
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Solved, "{:?}", sol.redundant);
+    let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+    assert!(r.residual.abs() > 1e-7, "the values are not exactly consistent");
+    assert!(r.residual.abs() <= r.allowance && !r.conflicting);
+}
+
+#[test]
+fn a_disagreeing_redundant_dimension_conflicts_with_its_spanning_group() {
+    let s = rectangle("48");
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Inconsistent);
+    let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+    assert!(r.conflicting);
+    // 8 mm off: the top measures 40 where it says 48.
+    assert!((r.residual + 8.0).abs() < 1e-6, "{}", r.residual);
+    let group: Vec<&str> = r.spanning_group.iter().map(|c| s.constraint(*c).id.as_str()).collect();
+    assert_eq!(group, ["v_right", "v_left", "width"]);
+}
+
+/// A triangle by three distances, drawn roughly: it solves, and keeps the drawing's
+/// orientation (the mirror image satisfies the distances as well).
+#[test]
+fn a_rough_drawing_solves_with_its_orientation() {
+    for (ax, ay) in [(1.0, 3.5), (2.0, -3.0)] {
+        let s = model(&format!(
+            r#"System(name: "t", dim: 2, entities: [Point(id: "o", at: [0, 0]),
+            Point(id: "b", at: [4.5, 0.3]), Point(id: "a", at: [{ax}, {ay}])],
+            constraints: [Distance(id: "ob", a: "o", b: "b", value: 4),
+            Distance(id: "oa", a: "o", b: "a", value: 3), Distance(id: "ab", a: "a", b: "b", value: 5)])"#
+        ));
+        let sol = run(&s);
+        assert_eq!(sol.status, Status::Solved);
+        let (o, a, b) = (point(&s, &sol.x, "o"), point(&s, &sol.x, "a"), point(&s, &sol.x, "b"));
+        let d = |p: (f64, f64), q: (f64, f64)| ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt();
+        assert!((d(o, b) - 4.0).abs() < 1e-8 && (d(o, a) - 3.0).abs() < 1e-8);
+        assert!((d(a, b) - 5.0).abs() < 1e-8);
+        let area = (b.0 - o.0) * (a.1 - o.1) - (b.1 - o.1) * (a.0 - o.0);
+        assert_eq!(area > 0.0, ay > 0.0, "the drawing's orientation is kept");
+    }
+}
+
+#[test]
+fn the_solved_model_satisfies_itself_and_keeps_its_verdict() {
+    let s = rectangle("40");
+    let sol = run(&s);
+    let solved = solved_system(&s, &sol);
+    let again = analyze(&solved, &AnalysisOptions::default()).unwrap();
+    let before = analyze(&s, &AnalysisOptions::default()).unwrap();
+    assert_eq!((again.rank, again.dof), (before.rank, before.dof));
+    assert_eq!(again.redundant.len(), before.redundant.len());
+    assert_eq!(again.sketch.as_ref().map(|k| k.satisfied), Some(true), "{:?}", again.sketch);
+    let back = System::from_ron_str(&solved.to_ron(), None).unwrap();
+    assert_eq!(back.to_ron(), solved.to_ron());
+}
+
+/// Every example of data/ solves at its values (its drawings are solutions already, or
+/// close), with no conflict unless the example says it has one.
+#[test]
+fn every_example_solves() {
+    for file in gcs_suite::data_files() {
+        let s = gcs_suite::load(&file);
+        let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
+        let sol = solve(&s, &analysis, &SolveOptions::default()).unwrap();
+        assert_eq!(sol.status, Status::Solved, "{file}: {:?}", sol.redundant);
+    }
+}
