@@ -1,4 +1,5 @@
-//! `gcs`: check and analyse geometric constraint systems written in RON.
+//! `gcs`: check, analyse, solve and convert geometric constraint systems (RON models and CAD
+//! files).
 //!
 //! This binary is glue: it reads files, picks what to run, and prints reports. The analysis
 //! lives in the library crates (`gcs-model`, `gcs-rank`, `gcs-jacobian`, `gcs-rigidity`,
@@ -19,11 +20,12 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand, ValueEnum};
 use gcs_analysis::Backend;
 
-/// Analyse geometric constraint systems (CAD sketches and assemblies) without solving them.
+/// Analyse geometric constraint systems (CAD sketches and assemblies) exactly, and solve them.
 ///
-/// Models are RON files (format: docs/format.md). A directory stands for every *.ron file below
-/// it, in sorted order. A file that cannot be read or analysed is reported and the others are
-/// still processed.
+/// Models are RON files (format: docs/format.md) or CAD files: SolveSpace .slvs, FreeCAD .FCStd,
+/// Onshape sketch JSON (one model per sketch). A directory stands for every such file below it,
+/// in sorted order. A file that cannot be read or analysed is reported and the others are still
+/// processed.
 ///
 /// Exit status: 0 when every file was processed, 1 when some failed, 2 on a usage error.
 #[derive(Parser, Debug)]
