@@ -165,9 +165,7 @@ pub(crate) fn law<F: Field>(
             Law::measure(cosine(&l.plane(p).0, &l.plane(q).0))
         }
         S::ParallelLineLine(p, q) if !d3 => {
-            let [a1, b1, _] = l.line2(p);
-            let [a2, b2, _] = l.line2(q);
-            Law::exact(vec![v::cross2(&[a1, b1], &[a2, b2])])
+            Law::exact(vec![v::cross2(&l.normal2(p), &l.normal2(q))])
         }
         S::ParallelLineLine(p, q) => Law::exact(v::cross3(&l.line3(p).0, &l.line3(q).0)),
         S::ParallelPlanePlane(p, q) => Law::exact(v::cross3(&l.plane(p).0, &l.plane(q).0)),

@@ -20,20 +20,41 @@
 //! The order is greedy: next comes the unplaced entity with the most degrees of constraint
 //! towards the placed ones (ties: file order), so that determined entities are constructed
 //! from their determiners; an entity whose equations have no rational solution is retried
-//! when more of its neighbours are placed, and the placement fails if it never succeeds.
+//! when more of its neighbours are placed.
+//!
+//! Three things let the placement close loops, where a constraint falls on an entity after an
+//! earlier free choice has already decided what it asks:
+//!
+//! - *Directions known before lines* ([`Directions`]): lines and segments that `Parallel` and
+//!   `Perpendicular` tie together, anchored by `Horizontal` or `Vertical` or by a placed
+//!   member, have a known direction before their points are placed; a constraint that reads
+//!   only that direction (a tangency at a point, a parallelism), or the line through one end
+//!   point already there (an incidence), is then used at once — the side of a fillet is known
+//!   vertical before its far end is placed, and its tangency at the arc's end places that end.
+//! - *Learning from failures*: when an entity cannot be placed, the placed entities it depends
+//!   on (directly or through the entities that determined them) that were placed with a free
+//!   choice are the suspects; the placement starts again with the most recent suspect placed
+//!   after the entity that failed, or, when that was tried already, with both placed together
+//!   as one group (their coordinates solved at once, which closes a loop through both).
+//! - Every candidate root of a quadratic is tried, not only the one nearest the preference.
+//!
+//! None of this changes what a witness is: every choice is a random point of the solution set
+//! of the constraints imposed at that step, and every parameter-free constraint is imposed
+//! (none is left to be checked, which would make the configuration special when it does not
+//! follow from the others), so the witness is a generic point of the constraints as before.
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use gcs_model::rng::SplitMix64;
-use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
+use gcs_model::{ConstraintIdx, ConstraintKind, Dim, EntityIdx, Signature, System};
 
 use crate::dual::Dual;
 use crate::laws;
 use crate::layout::Layout;
 use crate::qla::{self, Affine, Num, Q};
 use crate::repr::{Draw, Snap};
-use crate::views::Local;
+use crate::views::{KnownLine, Local};
 
 /// How to place.
 #[derive(Clone, Debug)]
@@ -57,6 +78,224 @@ pub(crate) struct PlaceFailure {
     pub(crate) constraints: Vec<ConstraintIdx>,
 }
 
+/// A failure of one run, with what the next run can learn from it.
+struct RunFailure {
+    public: PlaceFailure,
+    /// The group that could not be placed (an entity of it).
+    group: EntityIdx,
+    /// The suspects, most recently placed first (an entity of each group).
+    suspects: Vec<EntityIdx>,
+    /// Whether the group failed for want of a square root (not for constraints that
+    /// contradict each other): modulo the prime, other random choices may have one.
+    no_root: bool,
+}
+
+/// What the runs of one placement learnt from their failures: entities placed together, and
+/// entities placed after others.
+#[derive(Clone, Debug)]
+struct Learned {
+    /// Union-find over entities: the groups placed at once.
+    parent: Vec<u32>,
+    /// `(a, b)`: the group of `a` is placed before that of `b`.
+    before: Vec<(EntityIdx, EntityIdx)>,
+}
+
+impl Learned {
+    /// Coincident points start in one group: they are one point, and a constraint on any of
+    /// them places it (the end of a fillet's arc is placed by the tangency at the end of the
+    /// segment it joins).
+    fn new(system: &System) -> Learned {
+        let n = system.entities().len();
+        let mut learned = Learned { parent: (0..n as u32).collect(), before: Vec::new() };
+        for c in system.constraints() {
+            if let Signature::CoincidentPoints(a, b) = c.signature {
+                let (ra, rb) = (learned.find(a), learned.find(b));
+                if ra != rb {
+                    // The root is the first in file order, so that groups keep file order.
+                    let (lo, hi) = if ra.0 < rb.0 { (ra, rb) } else { (rb, ra) };
+                    learned.parent[hi.index()] = lo.0;
+                }
+            }
+        }
+        learned
+    }
+
+    fn find(&self, e: EntityIdx) -> EntityIdx {
+        let mut x = e.0;
+        while self.parent[x as usize] != x {
+            x = self.parent[x as usize];
+        }
+        EntityIdx(x)
+    }
+
+    /// Learns from a failure (see the module documentation); `false` when there is nothing
+    /// new to try. Only entities without homogeneous coordinates are grouped.
+    fn learn(&mut self, f: &RunFailure, layout: &Layout) -> bool {
+        let groupable = |e: EntityIdx| layout.repr(e).is_some_and(|r| !r.homogeneous());
+        let g = self.find(f.group);
+        for &s in &f.suspects {
+            let s = self.find(s);
+            if s == g {
+                continue;
+            }
+            let tried = self.before.iter().any(|(a, b)| self.find(*a) == g && self.find(*b) == s);
+            let reverse = self.before.iter().any(|(a, b)| self.find(*a) == s && self.find(*b) == g);
+            if !tried && !reverse {
+                self.before.push((g, s));
+                return true;
+            }
+            if groupable(g) && groupable(s) {
+                self.parent[s.index()] = g.0;
+                let (parent, before) = (&self.parent, &mut self.before);
+                let find = |e: EntityIdx| {
+                    let mut x = e.0;
+                    while parent[x as usize] != x {
+                        x = parent[x as usize];
+                    }
+                    x
+                };
+                before.retain(|(a, b)| find(*a) != find(*b));
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// The direction classes of the 2D lines and segments: lines that `Parallel` (same direction)
+/// and `Perpendicular` (turned by 90°) tie together, some of them anchored by `Horizontal` or
+/// `Vertical`. A line's direction is known before the line is placed when its class is anchored
+/// or has a placed member (see the module documentation).
+#[derive(Clone, Debug)]
+struct Directions {
+    /// Parity union-find over entities (only lines and segments take part): parent, and the
+    /// parity (0: same direction, 1: perpendicular) to the parent.
+    parent: Vec<u32>,
+    parity: Vec<u8>,
+    /// Per root: the parity of the class's members relative to the horizontal, when anchored.
+    anchor: Vec<Option<u8>>,
+    /// Members of each class (indexed by root).
+    members: Vec<Vec<EntityIdx>>,
+}
+
+impl Directions {
+    fn new(system: &System) -> Directions {
+        let n = system.entities().len();
+        let mut d = Directions {
+            parent: (0..n as u32).collect(),
+            parity: vec![0; n],
+            anchor: vec![None; n],
+            members: vec![Vec::new(); n],
+        };
+        if system.dim() != Dim::Two {
+            return d;
+        }
+        use Signature as S;
+        for c in system.constraints() {
+            match c.signature {
+                S::ParallelLineLine(a, b) => d.union(a, b, 0),
+                S::PerpendicularLineLine(a, b) => d.union(a, b, 1),
+                _ => {}
+            }
+        }
+        for c in system.constraints() {
+            match c.signature {
+                S::Horizontal(a) => d.anchor_at(a, 0),
+                S::Vertical(a) => d.anchor_at(a, 1),
+                _ => {}
+            }
+        }
+        for e in system.entity_indices() {
+            if system.entity(e).kind().is_line_like() {
+                let (r, _) = d.find(e);
+                d.members[r as usize].push(e);
+            }
+        }
+        d
+    }
+
+    fn find(&self, e: EntityIdx) -> (u32, u8) {
+        let (mut x, mut parity) = (e.0, 0u8);
+        while self.parent[x as usize] != x {
+            parity ^= self.parity[x as usize];
+            x = self.parent[x as usize];
+        }
+        (x, parity)
+    }
+
+    fn union(&mut self, a: EntityIdx, b: EntityIdx, rel: u8) {
+        let ((ra, pa), (rb, pb)) = (self.find(a), self.find(b));
+        if ra != rb {
+            self.parent[ra as usize] = rb;
+            self.parity[ra as usize] = pa ^ pb ^ rel;
+        }
+    }
+
+    fn anchor_at(&mut self, e: EntityIdx, parity: u8) {
+        let (r, p) = self.find(e);
+        self.anchor[r as usize].get_or_insert(parity ^ p);
+    }
+}
+
+/// `n` turned by 90° when `parity` is 1.
+fn turned(n: [Q; 2], parity: u8) -> [Q; 2] {
+    if parity == 0 {
+        n
+    } else {
+        let [a, b] = n;
+        [-b, a]
+    }
+}
+
+/// How a 2D constraint reads a line or segment argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LineRead {
+    /// Its direction only (parallelism, perpendicularity, horizontal, vertical, the line of a
+    /// tangency at a given point).
+    Direction,
+    /// The line itself (an incidence, a tangency, a symmetry axis).
+    Position,
+}
+
+/// The line and segment arguments of a parameter-free 2D constraint that the constructive
+/// placement may read through a known direction, and how (see [`Directions`]).
+fn line_reads(signature: Signature) -> Vec<(EntityIdx, LineRead)> {
+    use LineRead::{Direction, Position};
+    use Signature as S;
+    match signature {
+        S::ParallelLineLine(a, b) | S::PerpendicularLineLine(a, b) => {
+            vec![(a, Direction), (b, Direction)]
+        }
+        S::Horizontal(e) | S::Vertical(e) => vec![(e, Direction)],
+        S::TangentAtLineCircle { line, .. } => vec![(line, Direction)],
+        S::IncidentPointLine { line, .. } | S::TangentLineCircle { line, .. } => {
+            vec![(line, Position)]
+        }
+        S::Symmetric { axis, .. } => vec![(axis, Position)],
+        S::Metric(_)
+        | S::CoincidentPoints(..)
+        | S::ParallelPlanePlane(..)
+        | S::ParallelLinePlane { .. }
+        | S::PerpendicularPlanePlane(..)
+        | S::PerpendicularLinePlane { .. }
+        | S::IncidentPointPlane { .. }
+        | S::IncidentPointCircle { .. }
+        | S::IncidentPointSphere { .. }
+        | S::IncidentLinePlane { .. }
+        | S::TangentCircleCircle(..)
+        | S::TangentPlaneSphere { .. }
+        | S::TangentSphereSphere(..)
+        | S::ConcentricCircles(..)
+        | S::CenterPoint { .. }
+        | S::EqualLength(..)
+        | S::Midpoint { .. }
+        | S::SymmetricAboutPoint { .. }
+        | S::EqualRadius(..)
+        | S::TangentAtCircleCircle { .. }
+        | S::Fix(_) => Vec::new(),
+    }
+}
+
 struct Placer<'a> {
     system: &'a System,
     layout: &'a Layout,
@@ -66,8 +305,11 @@ struct Placer<'a> {
     placed: Vec<bool>,
     /// Exact (parameter-free) constraints by base entity.
     adjacent: Vec<Vec<ConstraintIdx>>,
-    /// Base entities of each constraint.
+    /// Base entities of each constraint (as the placement sees it: see `rays_free`).
     bases: Vec<Vec<EntityIdx>>,
+    /// The `Fix` constraints of arcs whose end points' rays are parameters (over ℚ: see
+    /// [`place`]).
+    rays_free: Vec<bool>,
     /// Variant of each constraint (tangency branch) chosen from the preference.
     variant: Vec<usize>,
     rng: SplitMix64,
@@ -75,10 +317,28 @@ struct Placer<'a> {
     noise: f64,
     /// Whether the placement runs modulo the prime.
     modular: bool,
-    /// The entity being placed.
-    current: Option<EntityIdx>,
+    /// The group of each entity (an entity of it: the root of [`Learned`]) and the members
+    /// of each group (indexed by root; entities with coordinates only).
+    group: Vec<EntityIdx>,
+    members: Vec<Vec<EntityIdx>>,
+    /// The group being placed.
+    current: Vec<EntityIdx>,
     /// For each point, the other endpoints of the segments it is an endpoint of.
     partners: Vec<Vec<EntityIdx>>,
+    /// The direction classes of 2D lines, whether each class's direction is known (by root),
+    /// and the lines and segments each entity is a base of.
+    directions: &'a Directions,
+    class_known: Vec<bool>,
+    lines_of: &'a [Vec<EntityIdx>],
+    /// Groups that must be placed before each group (by root).
+    after: Vec<Vec<EntityIdx>>,
+    /// When each group was placed (by root), how free its placement was (the dimension of the
+    /// solutions it was chosen from), and the groups its constraints tied it to.
+    step: Vec<Option<usize>>,
+    freedom: Vec<usize>,
+    determiners: Vec<Vec<EntityIdx>>,
+    /// Whether the last placement of a group failed for want of a square root.
+    no_root: bool,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -119,6 +379,12 @@ pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64
 
 /// Places every entity; returns the witness coordinates or the entity that could not be
 /// placed.
+///
+/// `Fix` is imposed over ℚ with the sketch's values, except the rays of a fixed arc's end
+/// points: a drawn end point is seldom exactly on its circle, and the point of the circle on
+/// the ray through it is then irrational; the end points are placed on the circle near the
+/// drawing instead, and their rays are read off the witness (see `Witness::jacobian`), as a
+/// dimension's value is. Modulo the prime every fixed position is read off the witness.
 pub(crate) fn place(
     system: &System,
     layout: &Layout,
@@ -127,17 +393,26 @@ pub(crate) fn place(
     options: &PlaceOptions,
 ) -> Result<Vec<Q>, PlaceFailure> {
     let nent = system.entities().len();
+    let ncons = system.constraints().len();
     let mut adjacent = vec![Vec::new(); nent];
-    let mut bases = Vec::with_capacity(system.constraints().len());
+    let mut bases = Vec::with_capacity(ncons);
+    let mut rays_free = vec![false; ncons];
     for ci in system.constraint_indices() {
-        let b = system.constraint_base_entities(ci);
-        let kind = system.constraint(ci).kind;
+        let mut b = system.constraint_base_entities(ci);
+        let c = system.constraint(ci);
         // Modulo the prime, a fixed position is a parameter like a dimension (its rows do not
         // depend on it), read off the witness: with it free, a construction the fixes determine
         // completely (a point on two fixed circles) still has random choices, and so a square
         // root for half of them.
-        let parameter = options.modular && kind == ConstraintKind::Fix;
-        if is_exact_kind(kind) && !parameter {
+        let parameter = options.modular && c.kind == ConstraintKind::Fix;
+        if !options.modular
+            && let Signature::Fix(e) = c.signature
+            && let Some((start, end)) = system.arc_points(e)
+        {
+            b.retain(|x| *x != start && *x != end);
+            rays_free[ci.index()] = true;
+        }
+        if is_exact_kind(c.kind) && !parameter {
             for e in &b {
                 adjacent[e.index()].push(ci);
             }
@@ -151,13 +426,44 @@ pub(crate) fn place(
             partners[b.index()].push(a);
         }
     }
-    let attempts = if nent <= 2000 { 8 } else { 2 };
+    let directions = Directions::new(system);
+    let mut lines_of = vec![Vec::new(); nent];
+    if system.dim() == Dim::Two {
+        for l in system.entity_indices() {
+            if system.entity(l).kind().is_line_like() {
+                for b in system.base_entities(l) {
+                    lines_of[b.index()].push(l);
+                }
+            }
+        }
+    }
+    // Runs in a few orders (file order first, then random tie-breaks), each as many times as
+    // learning from failures takes (a bounded number in all: each run learns a new grouping
+    // or order, or the learning stops); modulo the prime, a run that failed for want of a
+    // square root is also tried again with other random choices.
+    let (epochs, lessons) = if nent <= 2000 { (8, nent.clamp(4, 16)) } else { (2, 0) };
     let mut rng = SplitMix64::new(options.seed ^ 0x5EED);
+    let mut tiebreak: Vec<u64> = (0..nent as u64).collect();
+    let mut learned = Learned::new(system);
+    let (mut epoch, mut run, mut learnt, mut retries) = (0, 0usize, 0, 0);
     let mut failure = None;
-    for attempt in 0..attempts {
-        // The first attempt breaks ties in file order, the others at random.
-        let tiebreak: Vec<u64> =
-            (0..nent as u64).map(|i| if attempt == 0 { i } else { rng.next_u64() }).collect();
+    loop {
+        let mut group = vec![EntityIdx(0); nent];
+        let mut members = vec![Vec::new(); nent];
+        for e in system.entity_indices() {
+            let r = learned.find(e);
+            group[e.index()] = r;
+            if layout.repr(e).is_some() {
+                members[r.index()].push(e);
+            }
+        }
+        let mut after = vec![Vec::new(); nent];
+        for (a, b) in &learned.before {
+            let (a, b) = (learned.find(*a), learned.find(*b));
+            if a != b && !after[b.index()].contains(&a) {
+                after[b.index()].push(a);
+            }
+        }
         let mut p = Placer {
             system,
             layout,
@@ -166,13 +472,24 @@ pub(crate) fn place(
             placed: vec![false; nent],
             adjacent: adjacent.clone(),
             bases: bases.clone(),
-            variant: vec![0; system.constraints().len()],
-            rng: SplitMix64::new(options.seed.wrapping_add(attempt as u64)),
+            rays_free: rays_free.clone(),
+            variant: vec![0; ncons],
+            rng: SplitMix64::new(options.seed.wrapping_add(run as u64)),
             scale,
             noise: options.noise,
             modular: false,
-            current: None,
+            group,
+            members,
+            current: Vec::new(),
             partners: partners.clone(),
+            directions: &directions,
+            class_known: directions.anchor.iter().map(Option::is_some).collect(),
+            lines_of: &lines_of,
+            after,
+            step: vec![None; nent],
+            freedom: vec![0; nent],
+            determiners: vec![Vec::new(); nent],
+            no_root: false,
         };
         p.choose_variants();
         if options.modular {
@@ -182,10 +499,32 @@ pub(crate) fn place(
             }
             p.modular = true;
         }
-        match p.run(&tiebreak) {
-            Ok(()) => return Ok(p.coords),
-            Err(f) => failure = Some(f),
+        run += 1;
+        let f = match p.run(&tiebreak) {
+            Ok(()) => {
+                return Ok(p.coords);
+            }
+            Err(f) => f,
+        };
+        // The first run's failure is reported: where the plain construction stopped.
+        let no_root = f.no_root;
+        if options.modular && no_root && retries < epochs {
+            // Modulo the prime, other random choices have a square root half the time: the
+            // same order again, nothing to learn.
+            retries += 1;
+        } else if !no_root && learnt < lessons && learned.learn(&f, layout) {
+            // (A square root missing over ℚ is no matter of order: another order is tried.)
+            learnt += 1;
+        } else {
+            epoch += 1;
+            if epoch >= epochs {
+                failure.get_or_insert(f.public);
+                break;
+            }
+            tiebreak = (0..nent).map(|_| rng.next_u64()).collect();
+            learned = Learned::new(system);
         }
+        failure.get_or_insert(f.public);
     }
     Err(failure.unwrap_or(PlaceFailure { entity: EntityIdx(0), constraints: Vec::new() }))
 }
@@ -215,76 +554,297 @@ impl Placer<'_> {
         }
     }
 
-    /// DOC of the constraints binding `e` to placed entities only.
-    fn score(&self, e: EntityIdx) -> usize {
-        self.ready(e).iter().map(|c| self.system.constraint(*c).doc).sum()
+    /// Whether entity `b` is placed or in group `g`.
+    fn done(&self, b: EntityIdx, g: EntityIdx) -> bool {
+        self.placed[b.index()] || self.group[b.index()] == g
     }
 
-    /// The exact constraints on `e` whose other base entities are all placed.
-    fn ready(&self, e: EntityIdx) -> Vec<ConstraintIdx> {
-        self.adjacent[e.index()]
+    /// DOC of the constraints binding group `g` to placed entities (or known directions, or
+    /// the frame) only; those between its own members do not count.
+    fn score(&self, g: EntityIdx) -> usize {
+        self.ready(g)
             .iter()
-            .copied()
-            .filter(|c| self.bases[c.index()].iter().all(|b| *b == e || self.placed[b.index()]))
-            .collect()
+            .filter(|(c, known)| {
+                let bases = &self.bases[c.index()];
+                !known.is_empty()
+                    || bases.len() < 2
+                    || bases.iter().any(|b| self.group[b.index()] != g)
+            })
+            .map(|(c, _)| self.system.constraint(*c).doc)
+            .sum()
     }
 
-    fn run(&mut self, tiebreak: &[u64]) -> Result<(), PlaceFailure> {
-        let system = self.system;
-        let mut heap: BinaryHeap<(usize, Reverse<u64>, u32)> = BinaryHeap::new();
-        let mut score = vec![0usize; system.entities().len()];
-        let mut failed_at: Vec<Option<usize>> = vec![None; system.entities().len()];
-        for e in system.entity_indices() {
-            if self.layout.repr(e).is_some() {
-                score[e.index()] = self.score(e);
-                heap.push((score[e.index()], Reverse(tiebreak[e.index()]), e.0));
+    /// The exact constraints on group `g` whose other base entities are all placed, or are
+    /// read only through a direction that is known ([`Directions`]), with those directions.
+    fn ready(&self, g: EntityIdx) -> Vec<(ConstraintIdx, Vec<KnownLine<Q>>)> {
+        let mut out: Vec<(ConstraintIdx, Vec<KnownLine<Q>>)> = Vec::new();
+        for m in &self.members[g.index()] {
+            for &c in &self.adjacent[m.index()] {
+                if out.iter().any(|(x, _)| *x == c) {
+                    continue;
+                }
+                if let Some(known) = self.readiness(c, g) {
+                    out.push((c, known));
+                }
             }
         }
-        let mut last_failure = None;
+        out
+    }
+
+    /// Whether constraint `c` can be imposed when group `g` is placed (see [`Placer::ready`]),
+    /// with the lines it reads through their known direction.
+    fn readiness(&self, c: ConstraintIdx, g: EntityIdx) -> Option<Vec<KnownLine<Q>>> {
+        if self.bases[c.index()].iter().all(|b| self.done(*b, g)) {
+            return Some(Vec::new());
+        }
+        let signature = self.system.constraint(c).signature;
+        let reads = line_reads(signature);
+        if reads.is_empty() || self.system.dim() != Dim::Two {
+            return None;
+        }
+        let mut known = Vec::new();
+        let mut reads_group = false;
+        for arg in signature.entities() {
+            let bases = self.system.base_entities(arg);
+            let complete = bases.iter().all(|b| self.done(*b, g));
+            let read = reads.iter().find(|(l, _)| *l == arg).map(|(_, r)| *r);
+            match read {
+                Some(read) if !complete => {
+                    let normal = self.known_normal(arg)?;
+                    let anchor = match read {
+                        LineRead::Direction => None,
+                        LineRead::Position => {
+                            let (p, q) = self.system.segment_points(arg)?;
+                            let a = [p, q].into_iter().find(|x| self.done(*x, g))?;
+                            reads_group |= self.group[a.index()] == g;
+                            Some(a)
+                        }
+                    };
+                    known.push(KnownLine { line: arg, normal, anchor });
+                }
+                _ => {
+                    if !complete {
+                        return None;
+                    }
+                    reads_group |= bases.iter().any(|b| self.group[b.index()] == g);
+                }
+            }
+        }
+        reads_group.then_some(known)
+    }
+
+    /// Whether every base entity of `line` (itself, or a segment's points) is placed.
+    fn line_placed(&self, line: EntityIdx) -> bool {
+        self.system.base_entities(line).iter().all(|b| self.placed[b.index()])
+    }
+
+    /// The normal of a placed 2D line or segment.
+    fn placed_normal(&self, line: EntityIdx) -> Option<[Q; 2]> {
+        let point = |p: EntityIdx| self.coords[self.layout.columns(p)].to_vec();
+        let n = match self.system.segment_points(line) {
+            Some((p, q)) => {
+                let (p, q) = (point(p), point(q));
+                [&p[1] - &q[1], &q[0] - &p[0]]
+            }
+            None => {
+                let c = point(line);
+                [c.first()?.clone(), c.get(1)?.clone()]
+            }
+        };
+        (!(n[0].is_zero() && n[1].is_zero())).then_some(n)
+    }
+
+    /// The known normal of a 2D line not (wholly) placed: from its class's anchor, or from a
+    /// placed member of its class.
+    fn known_normal(&self, line: EntityIdx) -> Option<[Q; 2]> {
+        let (root, parity) = self.directions.find(line);
+        if let Some(a) = self.directions.anchor[root as usize] {
+            return Some(turned([Q::ZERO, Q::ONE], a ^ parity));
+        }
+        self.directions.members[root as usize].iter().find_map(|m| {
+            if !self.line_placed(*m) {
+                return None;
+            }
+            let (_, pm) = self.directions.find(*m);
+            Some(turned(self.placed_normal(*m)?, pm ^ parity))
+        })
+    }
+
+    /// The sketch positions `Fix` reads for constraint `c` (none for the end points of an arc
+    /// whose rays are parameters).
+    fn sketch_of(&self, c: ConstraintIdx, b: EntityIdx) -> Option<Vec<Q>> {
+        if self.rays_free[c.index()]
+            && let Signature::Fix(arc) = self.system.constraint(c).signature
+            && let Some((start, end)) = self.system.arc_points(arc)
+            && (b == start || b == end)
+        {
+            return None;
+        }
+        crate::sketch::sketch_coords_in::<Q>(self.system, b)
+    }
+
+    /// The groups whose placement fixed what group `g`'s constraints ask, that were placed
+    /// with a free choice: through the placed entities of its ready constraints and, from
+    /// them, the groups that determined those; most recently placed first.
+    fn suspects(&self, g: EntityIdx, ready: &[ConstraintIdx]) -> Vec<EntityIdx> {
+        let mut seen: Vec<EntityIdx> = Vec::new();
+        let mut queue: Vec<EntityIdx> = Vec::new();
+        for c in ready {
+            for b in &self.bases[c.index()] {
+                let h = self.group[b.index()];
+                if h != g && self.placed[b.index()] && !seen.contains(&h) {
+                    seen.push(h);
+                    queue.push(h);
+                }
+            }
+        }
+        while let Some(h) = queue.pop() {
+            for d in &self.determiners[h.index()] {
+                if !seen.contains(d) {
+                    seen.push(*d);
+                    queue.push(*d);
+                }
+            }
+        }
+        let mut free: Vec<EntityIdx> =
+            seen.into_iter().filter(|h| self.freedom[h.index()] > 0).collect();
+        free.sort_by_key(|h| Reverse(self.step[h.index()]));
+        free
+    }
+
+    fn run(&mut self, tiebreak: &[u64]) -> Result<(), RunFailure> {
+        let system = self.system;
+        let nent = system.entities().len();
+        let mut heap: BinaryHeap<(usize, Reverse<u64>, u32)> = BinaryHeap::new();
+        let mut score = vec![0usize; nent];
+        let mut failed_at: Vec<Option<usize>> = vec![None; nent];
+        let roots: Vec<EntityIdx> =
+            system.entity_indices().filter(|e| !self.members[e.index()].is_empty()).collect();
+        for &g in &roots {
+            score[g.index()] = self.score(g);
+            heap.push((score[g.index()], Reverse(tiebreak[g.index()]), g.0));
+        }
+        let mut waiting: Vec<EntityIdx> = Vec::new();
+        let mut failures: Vec<RunFailure> = Vec::new();
+        let mut steps = 0;
         while let Some((s, _, i)) = heap.pop() {
-            let e = EntityIdx(i);
-            if self.placed[e.index()] || s != score[e.index()] {
+            let g = EntityIdx(i);
+            if self.placed[g.index()] || s != score[g.index()] || failed_at[g.index()] == Some(s) {
                 continue;
             }
-            if failed_at[e.index()] == Some(s) {
+            if self.after[g.index()].iter().any(|a| !self.placed[a.index()]) {
+                if !waiting.contains(&g) {
+                    waiting.push(g);
+                }
                 continue;
             }
-            let ready = self.ready(e);
-            if self.place_one(e, &ready) {
-                self.placed[e.index()] = true;
-                // Neighbours may now have more constraints towards placed entities.
-                let mut touched: Vec<EntityIdx> = Vec::new();
-                for c in &self.adjacent[e.index()] {
+            let ready = self.ready(g);
+            let res = self.place_group(g, &ready);
+            if let Some(freedom) = res {
+                let members = self.members[g.index()].clone();
+                for m in &members {
+                    self.placed[m.index()] = true;
+                }
+                let mut determiners: Vec<EntityIdx> = Vec::new();
+                for (c, _) in &ready {
                     for b in &self.bases[c.index()] {
-                        if !self.placed[b.index()] && !touched.contains(b) {
-                            touched.push(*b);
+                        let h = self.group[b.index()];
+                        if h != g && self.placed[b.index()] && !determiners.contains(&h) {
+                            determiners.push(h);
                         }
                     }
                 }
-                for b in touched {
-                    let s = self.score(b);
-                    if s != score[b.index()] {
-                        score[b.index()] = s;
-                        heap.push((s, Reverse(tiebreak[b.index()]), b.0));
+                self.step[g.index()] = Some(steps);
+                self.freedom[g.index()] = freedom;
+                self.determiners[g.index()] = determiners;
+                steps += 1;
+                // Neighbours may now have more constraints towards placed entities, and
+                // groups waiting for this one may go.
+                let mut touched: Vec<EntityIdx> = Vec::new();
+                for m in &members {
+                    for c in &self.adjacent[m.index()] {
+                        for b in &self.bases[c.index()] {
+                            let h = self.group[b.index()];
+                            if !self.placed[b.index()] && !touched.contains(&h) {
+                                touched.push(h);
+                            }
+                        }
                     }
                 }
+                // A direction known now (the first placed member of a class) makes
+                // constraints on the other members ready.
+                for m in &members {
+                    for &l in &self.lines_of[m.index()] {
+                        let (root, _) = self.directions.find(l);
+                        if self.class_known[root as usize] || !self.line_placed(l) {
+                            continue;
+                        }
+                        self.class_known[root as usize] = true;
+                        for o in &self.directions.members[root as usize] {
+                            for b in system.base_entities(*o) {
+                                let h = self.group[b.index()];
+                                if !self.placed[b.index()] && !touched.contains(&h) {
+                                    touched.push(h);
+                                }
+                            }
+                        }
+                    }
+                }
+                for h in touched {
+                    let s = self.score(h);
+                    if s != score[h.index()] {
+                        score[h.index()] = s;
+                        heap.push((s, Reverse(tiebreak[h.index()]), h.0));
+                    }
+                }
+                let (go, wait): (Vec<EntityIdx>, Vec<EntityIdx>) = waiting
+                    .iter()
+                    .partition(|h| self.after[h.index()].iter().all(|a| self.placed[a.index()]));
+                waiting = wait;
+                for h in go {
+                    score[h.index()] = self.score(h);
+                    failed_at[h.index()] = None;
+                    heap.push((score[h.index()], Reverse(tiebreak[h.index()]), h.0));
+                }
             } else {
-                failed_at[e.index()] = Some(s);
-                last_failure = Some(PlaceFailure { entity: e, constraints: ready });
+                failed_at[g.index()] = Some(s);
+                let constraints: Vec<ConstraintIdx> = ready.iter().map(|(c, _)| *c).collect();
+                let suspects = self.suspects(g, &constraints);
+                let entity = self.members[g.index()].first().copied().unwrap_or(g);
+                failures.push(RunFailure {
+                    public: PlaceFailure { entity, constraints },
+                    group: g,
+                    suspects,
+                    no_root: self.no_root,
+                });
             }
         }
         if self.placed.iter().zip(system.entities()).all(|(p, ent)| *p || ent.kind().is_composite())
         {
-            Ok(())
-        } else {
-            let first_unplaced = system
-                .entity_indices()
-                .find(|e| !self.placed[e.index()] && self.layout.repr(*e).is_some());
-            Err(last_failure.unwrap_or(PlaceFailure {
-                entity: first_unplaced.unwrap_or(EntityIdx(0)),
-                constraints: Vec::new(),
-            }))
+            return Ok(());
         }
+        // The first failure of a group that stayed unplaced is the one to learn from; the last
+        // is the one to report (the placement went as far as it could).
+        let unplaced = |f: &RunFailure| !self.placed[f.group.index()];
+        let report = failures.iter().rev().find(|f| unplaced(f)).map(|f| f.public.clone());
+        let first = failures.into_iter().find(|f| unplaced(f));
+        let fallback = || {
+            let g = roots.iter().copied().find(|g| !self.placed[g.index()]).unwrap_or(EntityIdx(0));
+            RunFailure {
+                public: PlaceFailure {
+                    entity: self.members[g.index()].first().copied().unwrap_or(g),
+                    constraints: Vec::new(),
+                },
+                group: g,
+                suspects: Vec::new(),
+                no_root: false,
+            }
+        };
+        let mut f = first.unwrap_or_else(fallback);
+        if let Some(r) = report {
+            f.public = r;
+        }
+        Err(f)
     }
 
     /// Linear equations making the normal of a 2D line or a plane parallel to a rational
@@ -339,39 +899,79 @@ impl Placer<'_> {
         qla::approx(self.noise * self.scale * (2.0 * self.rng.unit_f64() - 1.0), 1_000_000)
     }
 
-    /// Places `e` under its ready constraints; on success writes its coordinates.
-    fn place_one(&mut self, e: EntityIdx, ready: &[ConstraintIdx]) -> bool {
-        self.current = Some(e);
-        let cols = self.layout.columns(e);
+    /// The columns of the group being placed.
+    fn current_columns(&self) -> Vec<usize> {
+        self.current.iter().flat_map(|e| self.layout.columns(*e)).collect()
+    }
+
+    /// Whether coordinates `x` of the group being placed describe entities of their kinds (no
+    /// line without direction, no circle of radius zero) and keep every segment's two points
+    /// apart.
+    fn acceptable(&self, x: &[Q]) -> bool {
+        let mut offset = 0;
+        let mut at: Vec<(EntityIdx, &[Q])> = Vec::with_capacity(self.current.len());
+        for &m in &self.current {
+            let k = self.layout.columns(m).len();
+            let Some(slice) = x.get(offset..offset + k) else { return false };
+            if self.layout.repr(m).is_some_and(|r| r.degenerate(slice)) {
+                return false;
+            }
+            at.push((m, slice));
+            offset += k;
+        }
+        at.iter().all(|(m, slice)| {
+            self.partners[m.index()].iter().all(|o| {
+                if let Some((_, other)) = at.iter().find(|(x, _)| x == o) {
+                    other != slice
+                } else {
+                    !self.placed[o.index()] || self.coords[self.layout.columns(*o)] != **slice
+                }
+            })
+        })
+    }
+
+    /// Places group `g` under its ready constraints; on success writes its coordinates and
+    /// returns the dimension of the solutions it was chosen from.
+    fn place_group(
+        &mut self,
+        g: EntityIdx,
+        ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)],
+    ) -> Option<usize> {
+        self.current = self.members[g.index()].clone();
+        self.no_root = false;
+        let cols = self.current_columns();
         let n = cols.len();
-        let homogeneous = self.layout.repr(e).is_some_and(|r| r.homogeneous());
-        let pref: Vec<Q> = self.pref[cols.clone()].to_vec();
+        let single = match self.current[..] {
+            [e] => Some(e),
+            _ => None,
+        };
+        let repr = single.and_then(|e| self.layout.repr(e));
+        let homogeneous = repr.is_some_and(|r| r.homogeneous());
+        let pref: Vec<Q> = cols.iter().map(|c| self.pref[*c].clone()).collect();
         // Linearise every equation at the preference, and at a shifted point to tell linear
         // equations from quadratic ones.
         let delta: Vec<Q> =
             (0..n).map(|_| self.random_small() + Q::new(1, 7).unwrap_or(Q::ONE)).collect();
         let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
-        let _ = &mut linear;
         let mut quads: Vec<(AffineMap, AffineMap)> = Vec::new();
-        for &ci in ready {
-            let variant = self.variant[ci.index()];
-            let ([l0, l1], local) = self.laws_at(e, ci, variant, &pref, &delta);
+        for (ci, known) in ready {
+            let ([l0, l1], local) = self.laws_at(*ci, known, &cols, &pref, &delta);
             let linearised = |law: &laws::Law<Q>| -> Vec<Linearised> {
                 law.rows.iter().map(|d| (d.value.clone(), restrict(d, &local, &cols))).collect()
             };
             let (f0, f1) = (linearised(&l0), linearised(&l1));
             let mut split = None;
             for (k, (r0, r1)) in f0.iter().zip(&f1).enumerate() {
-                let g = &r0.1;
-                let predicted = &r0.0 + &qla::dot(g, &delta);
+                let grad = &r0.1;
+                let predicted = &r0.0 + &qla::dot(grad, &delta);
                 if predicted == r1.0 {
-                    if g.iter().all(Q::is_zero) {
+                    if grad.iter().all(Q::is_zero) {
                         if !r0.0.is_zero() {
-                            return false;
+                            return None;
                         }
                         continue;
                     }
-                    linear.push((g.clone(), qla::dot(g, &pref) - &r0.0));
+                    linear.push((grad.clone(), qla::dot(grad, &pref) - &r0.0));
                 } else if let Some(Some(maps)) = {
                     if split.is_none() {
                         split = Some(split_maps([&l0, &l1], &local, &cols, &pref, &delta));
@@ -380,12 +980,12 @@ impl Placer<'_> {
                 } {
                     quads.push(maps);
                 } else {
-                    return false;
+                    return None;
                 }
             }
         }
         // Quadratic internal relations (the Plücker relation of a 3D line).
-        for (p, m) in self.layout.repr(e).map(|r| r.internal_quadrics()).unwrap_or_default() {
+        for (p, m) in repr.map(|r| r.internal_quadrics()).unwrap_or_default() {
             let map = |rows: Vec<Vec<i64>>| AffineMap {
                 rows: rows
                     .into_iter()
@@ -394,25 +994,42 @@ impl Placer<'_> {
             };
             quads.push((map(p), map(m)));
         }
-        let Some(space) = qla::solve(n, &linear) else { return false };
+        let space = qla::solve(n, &linear)?;
+        let freedom = space.basis.len().saturating_sub(usize::from(homogeneous) + quads.len());
         // A free line or plane gets a normal of rational length (a Pythagorean direction near
         // the preference): tangencies to it then have rational solutions.
-        let repr = self.layout.repr(e);
         // A free endpoint of a segment whose other end is placed goes at a rational distance
         // from it (a rational unit direction): tangencies and equal lengths involving the
         // segment then have rational solutions.
         let snap = repr.map_or(Snap::Nothing, |r| r.snap());
-        if snap == Snap::Direction && space.basis.len() == n {
+        let mut offset = 0;
+        for m in self.current.clone() {
+            let k = self.layout.columns(m).len();
+            let range = offset..offset + k;
+            offset += k;
+            if self.layout.repr(m).is_none_or(|r| r.snap() != Snap::Direction)
+                || !projection_is_free(&space, range.clone())
+            {
+                continue;
+            }
             let placed_partner =
-                self.partners[e.index()].iter().copied().find(|o| self.placed[o.index()]);
+                self.partners[m.index()].iter().copied().find(|o| self.placed[o.index()]);
             if let Some(o) = placed_partner {
                 let other: Vec<Q> = self.coords[self.layout.columns(o)].to_vec();
-                let rows = self.rational_direction(&pref, &other);
+                let own: Vec<Q> = pref[range.clone()].to_vec();
+                let rows = self.rational_direction(&own, &other);
                 let mut with = linear.clone();
-                with.extend(rows);
+                with.extend(rows.into_iter().map(|(g, c)| {
+                    let mut row = vec![Q::ZERO; n];
+                    for (i, v) in range.clone().zip(g) {
+                        row[i] = v;
+                    }
+                    (row, c)
+                }));
                 if qla::solve(n, &with).is_some() {
                     linear = with;
                 }
+                break;
             }
         }
         if snap == Snap::Normal && normal_is_free(&space, n) {
@@ -425,74 +1042,71 @@ impl Placer<'_> {
                 linear = with;
             }
         }
-        let Some(space) = qla::solve(n, &linear) else { return false };
+        let space = qla::solve(n, &linear)?;
         let linear_only = quads.is_empty();
-        let chosen = if quads.is_empty() {
-            self.choose(&space, &pref, homogeneous)
+        let x = if linear_only {
+            // A few random points of the solutions, for one that is not degenerate.
+            (0..3).find_map(|_| {
+                self.choose(&space, &pref, homogeneous).filter(|x| self.acceptable(x))
+            })?
         } else {
-            self.solve_quadrics(n, &linear, &quads, &pref, homogeneous)
+            self.solve_quadrics(n, &linear, &quads, &pref, homogeneous)?
         };
-        let Some(x) = chosen else { return false };
-        if repr.is_some_and(|r| r.degenerate(&x)) {
-            return false;
-        }
-        // A segment must keep two distinct points.
-        for o in &self.partners[e.index()] {
-            if self.placed[o.index()] && self.coords[self.layout.columns(*o)] == x[..] {
-                return false;
-            }
-        }
-        let old: Vec<Q> = self.coords[cols.clone()].to_vec();
-        for (col, v) in cols.clone().zip(&x) {
-            self.coords[col] = v.clone();
+        let old: Vec<Q> = cols.iter().map(|c| self.coords[*c].clone()).collect();
+        for (col, v) in cols.iter().zip(&x) {
+            self.coords[*col] = v.clone();
         }
         // Exact check of every ready equation (a solution of linear equations checked linear
         // satisfies them by construction).
         let ok = linear_only
-            || ready.iter().all(|&ci| {
+            || ready.iter().all(|(ci, known)| {
                 let local =
-                    Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
+                    Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords)
+                        .with_lines(known.clone());
                 let none = |_: EntityIdx| None;
-                let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
-                let c = self.system.constraint(ci);
+                let sketch = |b: EntityIdx| self.sketch_of(*ci, b);
+                let c = self.system.constraint(*ci);
                 let sketch: &laws::SketchFn<'_, Q> =
                     if c.kind == ConstraintKind::Fix { &sketch } else { &none };
                 let law = laws::law(c.signature, self.variant[ci.index()], &local, sketch, false);
                 law.rows.iter().all(|r| r.value.is_zero())
             });
         if !ok {
-            for (col, v) in cols.zip(old) {
-                self.coords[col] = v;
+            for (col, v) in cols.iter().zip(old) {
+                self.coords[*col] = v;
             }
+            return None;
         }
-        ok
+        Some(freedom)
     }
 
-    /// The law of `ci` (with its difference-of-squares form) with entity `e` at `pref` and at
-    /// `pref + delta`, and the local columns of the constraint.
+    /// The law of `ci` (with its difference-of-squares form) with the group being placed (its
+    /// columns `cols`) at `pref` and at `pref + delta`, and the local columns of the
+    /// constraint.
     fn laws_at(
         &mut self,
-        e: EntityIdx,
         ci: ConstraintIdx,
-        variant: usize,
+        known: &[KnownLine<Q>],
+        cols: &[usize],
         pref: &[Q],
         delta: &[Q],
     ) -> ([laws::Law<Q>; 2], Vec<usize>) {
         let signature = self.system.constraint(ci).signature;
-        let cols = self.layout.columns(e);
+        let variant = self.variant[ci.index()];
         let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
         let mut at = |x: &[Q]| {
-            for (col, v) in cols.clone().zip(x) {
-                self.coords[col] = v.clone();
+            for (col, v) in cols.iter().zip(x) {
+                self.coords[*col] = v.clone();
             }
-            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords);
-            let sketch = |b: EntityIdx| crate::sketch::sketch_coords_in::<Q>(self.system, b);
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords)
+                .with_lines(known.to_vec());
+            let sketch = |b: EntityIdx| self.sketch_of(ci, b);
             (laws::law(signature, variant, &local, &sketch, true), local.cols)
         };
         let (l0, local_cols) = at(pref);
         let (l1, _) = at(&shifted);
-        for (col, v) in cols.zip(pref) {
-            self.coords[col] = v.clone();
+        for (col, v) in cols.iter().zip(pref) {
+            self.coords[*col] = v.clone();
         }
         ([l0, l1], local_cols)
     }
@@ -518,7 +1132,10 @@ impl Placer<'_> {
         Some(x)
     }
 
-    /// Solves the linear equations plus quadrics `|P|² = |M|²`.
+    /// Solves the linear equations plus quadrics `|P|² = |M|²`: on the parameters `t` of the
+    /// solutions `x = x0 + B t` of the linear equations, where a quadric that is not one in
+    /// the coordinates may factorise (a point of a group whose other members follow it, where
+    /// `P` and `M` keep fixed directions only once the linear equations hold).
     fn solve_quadrics(
         &mut self,
         n: usize,
@@ -527,45 +1144,81 @@ impl Placer<'_> {
         pref: &[Q],
         homogeneous: bool,
     ) -> Option<Vec<Q>> {
-        let mut linear = linear.to_vec();
-        let mut rest: Vec<&(AffineMap, AffineMap)> = Vec::new();
+        let space = qla::solve(n, linear)?;
+        let d = space.basis.len();
+        let on = |map: &AffineMap| AffineMap {
+            rows: map
+                .rows
+                .iter()
+                .map(|(g, c)| {
+                    let gt: Vec<Q> = space.basis.iter().map(|b| qla::dot(g, b)).collect();
+                    (gt, qla::dot(g, &space.x0) + c)
+                })
+                .collect(),
+        };
+        let quads: Vec<(AffineMap, AffineMap)> =
+            quads.iter().map(|(p, m)| (on(p), on(m))).collect();
+        let pref_t = if d == 0 { Vec::new() } else { space.project(pref) };
+        let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
+        let mut rest: Vec<(AffineMap, AffineMap)> = Vec::new();
         for q in quads {
             // |P|² = |M|² where P and M keep a fixed direction factorises over ℚ when the
             // product of the lengths of the directions is rational: p·|dP|² = ±m·|dP||dM|
             // (a circle tangent to a line with a rational unit normal…). The sign is the
             // preference's side.
-            if let Some(rows) = factorise(q, pref) {
+            if let Some(rows) = factorise(&q, &pref_t) {
                 linear.extend(rows);
                 continue;
             }
             // Quadrics with the same quadratic part differ by a linear equation (two circles
             // through a point, two points on a circle…).
             if let Some(first) = rest.first() {
-                let h = q.0.quadratic_form(&q.1, n);
-                let h0 = first.0.quadratic_form(&first.1, n);
+                let h = q.0.quadratic_form(&q.1, d);
+                let h0 = first.0.quadratic_form(&first.1, d);
                 if let Some(lambda) = proportional(&h, &h0) {
-                    let (g, c) = q.0.linear_part(&q.1, n);
-                    let (g0, c0) = first.0.linear_part(&first.1, n);
+                    let (g, c) = q.0.linear_part(&q.1, d);
+                    let (g0, c0) = first.0.linear_part(&first.1, d);
                     let row: Vec<Q> = g.iter().zip(&g0).map(|(a, b)| a - &(&lambda * b)).collect();
                     let rhs = -(c - &lambda * &c0);
                     linear.push((row, rhs));
                     continue;
                 }
             }
+            // Two quadrics with proportional sides, M₁ = λ·M₂: then |P₁|² = |λ·P₂|², which
+            // may factorise (a line tangent to two circles: r₂·s₁ = ±r₁·s₂).
+            let derived = rest.iter().find_map(|r| {
+                let pair = map_ratio(&q.1, &r.1)
+                    .map(|l| (q.0.clone(), r.0.scaled(&l)))
+                    .or_else(|| map_ratio(&q.0, &r.0).map(|l| (q.1.clone(), r.1.scaled(&l))))?;
+                factorise(&pair, &pref_t)
+            });
+            if let Some(rows) = derived {
+                linear.extend(rows);
+            }
             rest.push(q);
         }
-        let space = qla::solve(n, &linear)?;
-        let Some((p, m)) = rest.first() else {
-            return self.choose(&space, pref, homogeneous);
+        let sub = qla::solve(d, &linear)?;
+        let holds = |rest: &[(AffineMap, AffineMap)], t: &[Q]| {
+            rest.iter().all(|(p2, m2)| p2.norm2(t) == m2.norm2(t))
+        };
+        let Some((p, m)) = rest.first().cloned() else {
+            for _ in 0..3 {
+                let t = self.choose(&sub, &pref_t, homogeneous)?;
+                let x = space.point(&t);
+                if self.acceptable(&x) {
+                    return Some(x);
+                }
+            }
+            return None;
         };
         // P = R·M for a rational orthogonal R near the preference, a few tries.
         for attempt in 0..6 {
             let k = p.rows.len().max(m.rows.len());
-            let r = self.orthogonal_near(p, m, pref, k, attempt);
+            let r = self.orthogonal_near(&p, &m, &pref_t, k, attempt);
             let mut sys = linear.clone();
             for i in 0..k {
-                // P_i(x) − Σ_j R_ij M_j(x) = 0
-                let mut row = p.rows.get(i).map_or(vec![Q::ZERO; n], |r| r.0.clone());
+                // P_i(t) − Σ_j R_ij M_j(t) = 0
+                let mut row = p.rows.get(i).map_or(vec![Q::ZERO; d], |r| r.0.clone());
                 let mut rhs = p.rows.get(i).map_or(Q::ZERO, |r| -r.1.clone());
                 for (j, mrow) in m.rows.iter().enumerate() {
                     for (a, b) in row.iter_mut().zip(&mrow.0) {
@@ -575,23 +1228,24 @@ impl Placer<'_> {
                 }
                 sys.push((row, rhs));
             }
-            if let Some(sub) = qla::solve(n, &sys) {
-                if homogeneous && sub.basis.is_empty() {
+            if let Some(within) = qla::solve(d, &sys) {
+                if homogeneous && within.basis.is_empty() {
                     continue;
                 }
-                let x = self.choose(&sub, pref, homogeneous)?;
-                let repr = self.layout.repr(self.current?);
-                if repr.is_some_and(|r| r.degenerate(&x)) {
-                    continue;
-                }
-                if rest.iter().all(|(p2, m2)| p2.norm2(&x) == m2.norm2(&x)) {
+                let t = self.choose(&within, &pref_t, homogeneous)?;
+                let x = space.point(&t);
+                if self.acceptable(&x) && holds(&rest, &t) {
                     return Some(x);
                 }
             }
         }
-        // A one-parameter family: intersect with the quadric, if the roots are rational.
-        self.univariate(&space, p, m, pref, homogeneous)
-            .filter(|x| rest.iter().all(|(p2, m2)| p2.norm2(x) == m2.norm2(x)))
+        // A one-parameter family: intersect with the quadric, if the roots are rational; the
+        // root nearer the preference first, then the other.
+        self.univariate(&sub, &p, &m, &pref_t, homogeneous)
+            .into_iter()
+            .filter(|t| holds(&rest, t))
+            .map(|t| space.point(&t))
+            .find(|x| self.acceptable(x))
     }
 
     fn univariate(
@@ -601,19 +1255,19 @@ impl Placer<'_> {
         m: &AffineMap,
         pref: &[Q],
         homogeneous: bool,
-    ) -> Option<Vec<Q>> {
+    ) -> Vec<Vec<Q>> {
         let (x0, w) = match (space.basis.len(), homogeneous) {
             (1, false) => (space.x0.clone(), space.basis[0].clone()),
             (2, true) => (space.basis[0].clone(), space.basis[1].clone()),
             (1, true) => {
                 let x = space.basis[0].clone();
-                return (p.norm2(&x) == m.norm2(&x)).then_some(x);
+                return if p.norm2(&x) == m.norm2(&x) { vec![x] } else { Vec::new() };
             }
             (0, false) => {
                 let x = space.x0.clone();
-                return (p.norm2(&x) == m.norm2(&x)).then_some(x);
+                return if p.norm2(&x) == m.norm2(&x) { vec![x] } else { Vec::new() };
             }
-            _ => return None,
+            _ => return Vec::new(),
         };
         // |P(x0 + t w)|² − |M(x0 + t w)|² = α t² + β t + γ.
         let coef = |map: &AffineMap| {
@@ -629,22 +1283,25 @@ impl Placer<'_> {
             let d: Vec<Q> = pref.iter().zip(&x0).map(|(u, v)| u - v).collect();
             if ww.is_zero() { Q::ZERO } else { qla::dot(&d, &w) / ww }
         };
-        let roots: Vec<Q> = if a.is_zero() {
+        let mut roots: Vec<Q> = if a.is_zero() {
             if b.is_zero() {
-                return None;
+                return Vec::new();
             }
             vec![-c / b]
         } else {
             let disc = &b * &b - Q::from(4_i64) * &a * &c;
-            let s = qla::sqrt(&disc)?;
+            let Some(s) = qla::sqrt(&disc) else {
+                self.no_root = true;
+                return Vec::new();
+            };
             let two_a = &a * Q::from(2_i64);
             vec![(-&b + &s) / &two_a, (-&b - &s) / &two_a]
         };
-        let t = roots.into_iter().min_by_key(|t| {
-            let d = qla::to_f64(&(t - &t_pref)).abs();
-            (d * 1e9) as u64
-        })?;
-        Some(x0.iter().zip(&w).map(|(x, wi)| x + &t * wi).collect())
+        roots.sort_by(|t, u| {
+            let d = |t: &Q| qla::to_f64(&(t - &t_pref)).abs();
+            d(t).total_cmp(&d(u))
+        });
+        roots.into_iter().map(|t| x0.iter().zip(&w).map(|(x, wi)| x + &t * wi).collect()).collect()
     }
 
     /// A rational orthogonal `k×k` matrix mapping `M(pref)`'s direction near `P(pref)`'s.
@@ -732,6 +1389,15 @@ fn parallel_to(u: &[Q], n: usize, origin: Option<&[Q]>) -> Vec<(Vec<Q>, Q)> {
             .unwrap_or(2);
         (0..3).filter(|i| *i != big).map(|i| row(i, big)).collect()
     }
+}
+
+/// Whether the coordinates `range` can be anywhere in the solution space (those of one entity
+/// of a group: a free point).
+fn projection_is_free(space: &Affine, range: std::ops::Range<usize>) -> bool {
+    let k = range.len();
+    let rows: Vec<(Vec<Q>, Q)> =
+        space.basis.iter().map(|v| (v[range.clone()].to_vec(), Q::ZERO)).collect();
+    rank(&rows, k) == k
 }
 
 /// Whether the normal of a line or plane (its first `n − 1` coordinates) can point anywhere in
@@ -843,9 +1509,16 @@ fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>>
     // p(x)·|dP|² − σ·m(x)·L = 0 with σ = ±1 from the preference.
     let pv = qla::dot(&lp, pref) + &lp0;
     let mv = qla::dot(&lm, pref) + &lm0;
-    let plus = qla::to_f64(&(&pv * &np - &mv * &l)).abs();
-    let minus = qla::to_f64(&(&pv * &np + &mv * &l)).abs();
-    let sigma = if plus <= minus { Q::ONE } else { -Q::ONE };
+    let (plus, minus) = (&pv * &np - &mv * &l, &pv * &np + &mv * &l);
+    // The side that holds exactly at the preference, else the nearer one (modulo the prime, a
+    // residue has no size: a random one).
+    let sigma = if plus.is_zero()
+        || (!minus.is_zero() && qla::to_f64(&plus).abs() <= qla::to_f64(&minus).abs())
+    {
+        Q::ONE
+    } else {
+        -Q::ONE
+    };
     let row: Vec<Q> = lp.iter().zip(&lm).map(|(a, b)| a * &np - &sigma * b * &l).collect();
     let rhs = -(&lp0 * &np - &sigma * &lm0 * &l);
     Some(vec![(row, rhs)])
@@ -857,7 +1530,7 @@ fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>>
 fn split_maps(
     laws: [&laws::Law<Q>; 2],
     local: &[usize],
-    cols: &std::ops::Range<usize>,
+    cols: &[usize],
     pref: &[Q],
     delta: &[Q],
 ) -> Option<Vec<Option<(AffineMap, AffineMap)>>> {
@@ -881,6 +1554,20 @@ fn split_maps(
     Some(vec![pm])
 }
 
+/// `λ` with `a = λ·b` for two affine maps (rows of coefficients and constants), if any.
+fn map_ratio(a: &AffineMap, b: &AffineMap) -> Option<Q> {
+    if a.rows.len() != b.rows.len() {
+        return None;
+    }
+    let full = |m: &AffineMap| -> Vec<Vec<Q>> {
+        m.rows
+            .iter()
+            .map(|(g, c)| g.iter().cloned().chain(std::iter::once(c.clone())).collect())
+            .collect()
+    };
+    proportional(&full(a), &full(b))
+}
+
 /// `λ` with `a = λ b` (both nonzero), if any.
 fn proportional(a: &[Vec<Q>], b: &[Vec<Q>]) -> Option<Q> {
     let mut lambda: Option<Q> = None;
@@ -902,18 +1589,14 @@ fn proportional(a: &[Vec<Q>], b: &[Vec<Q>]) -> Option<Q> {
     lambda
 }
 
-/// A gradient restricted to the columns of one entity.
-fn restrict<F: gcs_rank::Field>(
-    d: &Dual<F>,
-    local_cols: &[usize],
-    cols: &std::ops::Range<usize>,
-) -> Vec<F> {
+/// A gradient restricted to the columns `cols` of the group being placed.
+fn restrict<F: gcs_rank::Field>(d: &Dual<F>, local_cols: &[usize], cols: &[usize]) -> Vec<F> {
     let mut out = vec![F::zero(); cols.len()];
     for (i, col) in local_cols.iter().enumerate() {
-        if cols.contains(col)
+        if let Some(k) = cols.iter().position(|c| c == col)
             && let Some(g) = d.grad.get(i)
         {
-            out[col - cols.start] = g.clone();
+            out[k] = g.clone();
         }
     }
     out
@@ -929,6 +1612,17 @@ struct AffineMap {
 }
 
 impl AffineMap {
+    /// `λ·self`.
+    fn scaled(&self, lambda: &Q) -> AffineMap {
+        AffineMap {
+            rows: self
+                .rows
+                .iter()
+                .map(|(g, c)| (g.iter().map(|x| x * lambda).collect(), c * lambda))
+                .collect(),
+        }
+    }
+
     fn norm2(&self, x: &[Q]) -> Q {
         self.rows.iter().map(|(g, c)| qla::dot(g, x) + c).map(|v| &v * &v).sum()
     }

@@ -19,6 +19,21 @@ pub(crate) struct Local<'a, F> {
     pub(crate) cols: Vec<usize>,
     /// Whether each base entity's coordinates are homogeneous, in `vars` order.
     homogeneous: Vec<bool>,
+    /// 2D lines and segments seen through a known direction ([`Local::with_lines`]).
+    known: Vec<KnownLine<F>>,
+}
+
+/// A 2D line or segment not placed yet whose direction is known (the constructive placement):
+/// its normal, and for a segment one of its end points that the constraint may read (its line
+/// is then the line through that point with that normal).
+#[derive(Clone, Debug)]
+pub(crate) struct KnownLine<F> {
+    /// The line or segment.
+    pub(crate) line: EntityIdx,
+    /// Its normal `(a, b)`.
+    pub(crate) normal: [F; 2],
+    /// For a segment whose position is read: the end point it goes through.
+    pub(crate) anchor: Option<EntityIdx>,
 }
 
 impl<'a, F: Field> Local<'a, F> {
@@ -43,7 +58,20 @@ impl<'a, F: Field> Local<'a, F> {
             }
             vars.push((e, ev));
         }
-        Local { system, vars, cols, homogeneous }
+        Local { system, vars, cols, homogeneous, known: Vec::new() }
+    }
+
+    /// The same, with some 2D lines or segments seen through a known direction: their normal
+    /// ([`Local::normal2`]) is the given one, a constant, and the line of a segment with an
+    /// anchor ([`Local::line2`]) is the line through the anchor with that normal — what the
+    /// constructive placement uses before the segment's other end is placed.
+    pub(crate) fn with_lines(mut self, known: Vec<KnownLine<F>>) -> Self {
+        self.known = known;
+        self
+    }
+
+    fn known(&self, e: EntityIdx) -> Option<&KnownLine<F>> {
+        self.known.iter().find(|k| k.line == e)
     }
 
     /// The system.
@@ -75,6 +103,15 @@ impl<'a, F: Field> Local<'a, F> {
 
     /// A 2D line or segment as homogeneous `(a, b, c)`.
     pub(crate) fn line2(&self, e: EntityIdx) -> [Dual<F>; 3] {
+        if let Some(KnownLine { normal: [a, b], anchor: Some(p), .. }) = self.known(e) {
+            let x = self.coords(*p);
+            let (a, b) = (Dual::constant(a.clone()), Dual::constant(b.clone()));
+            let c = match x {
+                [x0, x1, ..] => -&(&(&a * x0) + &(&b * x1)),
+                _ => Dual::constant(F::zero()),
+            };
+            return [a, b, c];
+        }
         match self.system.segment_points(e) {
             Some((p, q)) => {
                 let (p, q) = (self.coords(p), self.coords(q));
@@ -90,6 +127,9 @@ impl<'a, F: Field> Local<'a, F> {
 
     /// The normal `(a, b)` of a 2D line or segment (without computing its offset).
     pub(crate) fn normal2(&self, e: EntityIdx) -> [Dual<F>; 2] {
+        if let Some(k) = self.known(e) {
+            return [Dual::constant(k.normal[0].clone()), Dual::constant(k.normal[1].clone())];
+        }
         match self.system.segment_points(e) {
             Some((p, q)) => {
                 let (p, q) = (self.coords(p), self.coords(q));

@@ -132,10 +132,42 @@ impl Witness {
             let own = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
             return Ok(assemble(system, layout, &self.plan, &x, &own));
         }
-        let sketch = |e: EntityIdx| -> Option<Vec<F>> {
-            sketch_coords(system, e)?.iter().map(|q| F::from_rational(q).ok()).collect()
-        };
-        Ok(assemble(system, layout, &self.plan, &x, &sketch))
+        let rays = self.source != WitnessSource::Sketch;
+        let reference = references(system, layout, &x, rays);
+        Ok(assemble(system, layout, &self.plan, &x, &reference))
+    }
+}
+
+/// The end points of fixed arcs.
+fn fixed_arc_points(system: &System) -> Vec<EntityIdx> {
+    let mut out = Vec::new();
+    for c in system.constraints() {
+        if let gcs_model::Signature::Fix(e) = c.signature
+            && let Some((start, end)) = system.arc_points(e)
+        {
+            out.extend([start, end]);
+        }
+    }
+    out
+}
+
+/// The positions `Fix` reads at the configuration `x`: the sketch's; with `rays`, the end
+/// points of a fixed arc at `x` itself. A generated witness places a fixed arc's end points on
+/// its circle near the drawing, where the drawn end point, seldom exactly on the circle, would
+/// put them at an irrational point (see `place::place`): the ray each stays on is then a
+/// parameter read off the witness, as a dimension's value is.
+fn references<'a, F: Field>(
+    system: &'a System,
+    layout: &'a Layout,
+    x: &'a [F],
+    rays: bool,
+) -> impl Fn(EntityIdx) -> Option<Vec<F>> + 'a {
+    let own = if rays { fixed_arc_points(system) } else { Vec::new() };
+    move |e: EntityIdx| {
+        if own.contains(&e) {
+            return x.get(layout.columns(e)).map(<[F]>::to_vec);
+        }
+        sketch_coords(system, e)?.iter().map(|q| F::from_rational(q).ok()).collect()
     }
 }
 
@@ -151,13 +183,13 @@ fn describe(system: &System, u: &Unsatisfied) -> Rejection {
 }
 
 /// The rank modulo the 61-bit prime of the Jacobian at `coords` (0 when a coordinate has no
-/// image modulo the prime).
-fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan) -> usize {
+/// image modulo the prime); `rays` as in [`references`].
+fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan, rays: bool) -> usize {
     let Ok(x) = coords.iter().map(ModP::from_rat).collect::<Result<Vec<ModP>, _>>() else {
         return 0;
     };
-    let sketch = |e: EntityIdx| crate::sketch::sketch_coords_in::<ModP>(system, e);
-    let j = assemble(system, layout, plan, &x, &sketch);
+    let reference = references(system, layout, &x, rays);
+    let j = assemble(system, layout, plan, &x, &reference);
     gcs_rank::echelon_rank(j.ncols, j.rows).0
 }
 
@@ -228,7 +260,7 @@ pub fn find_witness(
     if has_sketch {
         match plan(system, layout, &pref, &sketch)? {
             Ok(p) => {
-                let r = rank_modp(system, layout, &pref, &p);
+                let r = rank_modp(system, layout, &pref, &p, false);
                 best = Some((pref.clone(), p, r, WitnessSource::Sketch));
             }
             Err(u) => sketch_rejected = Some(describe(system, &u)),
@@ -246,10 +278,15 @@ pub fn find_witness(
             modular: false,
         };
         match place::place(system, layout, &pref_q, scale, &opts) {
-            Ok(coords) => match plan(system, layout, &rationals(&coords), &sketch)? {
+            Ok(coords) => match plan(
+                system,
+                layout,
+                &rationals(&coords),
+                &references(system, layout, &rationals(&coords), true),
+            )? {
                 Ok(p) => {
                     tested = true;
-                    let r = rank_modp(system, layout, &rationals(&coords), &p);
+                    let r = rank_modp(system, layout, &rationals(&coords), &p, true);
                     let source = if has_sketch && sketch_rejected.is_none() {
                         WitnessSource::Perturbed
                     } else {
