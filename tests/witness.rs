@@ -169,3 +169,94 @@ fn the_modular_witness_of_the_zoo_is_generic_at_every_seed() {
         assert_eq!(Verdict::of(&s, &a), Verdict::of(&s, &first), "seed {seed}");
     }
 }
+
+/// A connecting rod as CAD programs draw it: two arcs on an axis joined by two segments
+/// tangent to both at their ends (a common tangent: the lower one is placed as a line tangent
+/// to both circles, then its points as the feet from the centres), and a bushing: concentric
+/// arcs joined by vertical segments through their centre (a line known by its direction and a
+/// point before its ends are placed). Drawn exactly here; without the drawing, the placement
+/// must close those loops, at a witness with the drawing's verdict, at every seed.
+#[test]
+fn loops_closed_by_tangent_and_vertical_segments_have_a_generated_witness() {
+    const ROD: &str = r#"System(name: "rod", dim: 2,
+      entities: [
+        Point(id: "o", at: [0, 0]), Line(id: "axis", at: [[0, 0], [1, 0]]),
+        Arc(id: "small", center: [0, 0], radius: 2, start: ["-6/5", "8/5"], end: ["-6/5", "-8/5"]),
+        Arc(id: "big", center: [5, 0], radius: 5, start: [2, -4], end: [2, 4]),
+        Point(id: "p1", at: ["-6/5", "8/5"]), Point(id: "p2", at: [2, 4]),
+        Point(id: "p3", at: ["-6/5", "-8/5"]), Point(id: "p4", at: [2, -4]),
+        Segment(id: "top", from: "p1", to: "p2"), Segment(id: "bottom", from: "p3", to: "p4"),
+      ],
+      constraints: [
+        Fix(id: "fo", a: "o"), Fix(id: "fa", a: "axis"),
+        Coincident(id: "c0", a: "small.center", b: "o"), Incident(id: "on", a: "big.center", b: "axis"),
+        Coincident(id: "c1", a: "p1", b: "small.start"), TangentAt(id: "t1", a: "top", b: "small", at: "p1"),
+        Coincident(id: "c2", a: "p2", b: "big.end"), TangentAt(id: "t2", a: "top", b: "big", at: "p2"),
+        Coincident(id: "c3", a: "p3", b: "small.end"), TangentAt(id: "t3", a: "bottom", b: "small", at: "p3"),
+        Coincident(id: "c4", a: "p4", b: "big.start"), TangentAt(id: "t4", a: "bottom", b: "big", at: "p4"),
+        Radius(id: "r1", a: "small", value: 2), Radius(id: "r2", a: "big", value: 5),
+        Distance(id: "d", a: "o", b: "big.center", value: 5),
+      ])"#;
+    const BUSHING: &str = r#"System(name: "bushing", dim: 2,
+      entities: [
+        Point(id: "o", at: [0, 0]),
+        Arc(id: "inner", center: [0, 0], radius: 2, start: [0, 2], end: [0, -2]),
+        Arc(id: "outer", center: [0, 0], radius: 3, start: [0, 3], end: [0, -3]),
+        Point(id: "q1", at: [0, 3]), Point(id: "q2", at: [0, 2]), Segment(id: "upper", from: "q1", to: "q2"),
+        Point(id: "q3", at: [0, -2]), Point(id: "q4", at: [0, -3]), Segment(id: "lower", from: "q3", to: "q4"),
+      ],
+      constraints: [
+        Fix(id: "fo", a: "o"),
+        Coincident(id: "c0", a: "inner.center", b: "o"), Coincident(id: "c1", a: "outer.center", b: "inner.center"),
+        Coincident(id: "c2", a: "q1", b: "outer.start"), Coincident(id: "c3", a: "q2", b: "inner.start"),
+        Coincident(id: "c4", a: "q3", b: "inner.end"), Coincident(id: "c5", a: "q4", b: "outer.end"),
+        Vertical(id: "v1", a: "upper"), Vertical(id: "v2", a: "lower"),
+        Incident(id: "i1", a: "inner.center", b: "upper"), Incident(id: "i2", a: "inner.center", b: "lower"),
+        Radius(id: "r", a: "inner", value: 2), DistanceY(id: "w", a: "q2", b: "q1", value: 1),
+      ])"#;
+    for text in [ROD, BUSHING] {
+        let s = gcs_model::System::from_ron_str(text, None).unwrap();
+        let at_sketch = run(&s, Backend::Exact, 1);
+        assert_eq!(at_sketch.witness.source, WitnessSource::Sketch, "{}", s.name());
+        assert!(at_sketch.well_constrained(), "{}", s.name());
+        let want = Verdict::of(&s, &at_sketch);
+        let stripped = strip_unfixed_sketch(&s);
+        for seed in [1, 2, 3] {
+            let a = run(&stripped, Backend::Exact, seed);
+            assert!(
+                matches!(a.witness.source, WitnessSource::Generated | WitnessSource::Modular),
+                "{} (seed {seed}): {:?}",
+                s.name(),
+                a.witness.source
+            );
+            assert_eq!(Verdict::of(&stripped, &a), want, "{} (seed {seed})", s.name());
+        }
+    }
+}
+
+/// A fixed arc whose drawn end points are off its circle by the CAD program's rounding: the
+/// ray each end stays on is read off the witness, which is rational (the point of the circle
+/// on the drawn ray is not), and the verdict is the one a drawing on the circle has.
+#[test]
+fn a_fixed_arc_drawn_off_its_circle_has_a_rational_witness() {
+    let text = r#"System(name: "fixed arc", dim: 2,
+      entities: [
+        Arc(id: "k", center: [0, 0], radius: 5, start: [3.0000000001, 4], end: [-4, 2.9999999998]),
+        Point(id: "p", at: [5, 0]), Point(id: "q", at: [0, 5]),
+      ],
+      constraints: [
+        Fix(id: "f", a: "k"), Incident(id: "on", a: "p", b: "k"),
+        DistanceX(id: "dx", a: "k.start", b: "p", value: 2),
+        Incident(id: "on2", a: "q", b: "k"), Distance(id: "dq", a: "q", b: "k.end", value: 2),
+      ])"#;
+    let s = gcs_model::System::from_ron_str(text, None).unwrap();
+    let on_circle = text.replace("3.0000000001", "3").replace("2.9999999998", "3");
+    let drawn = gcs_model::System::from_ron_str(&on_circle, None).unwrap();
+    let want = Verdict::of(&drawn, &run(&drawn, Backend::Exact, 1));
+    assert!(want.well_constrained && want.redundant.is_empty());
+    for seed in [1, 2, 3] {
+        let a = run(&s, Backend::Exact, seed);
+        assert_eq!(a.witness.source, WitnessSource::Generated, "seed {seed}");
+        assert_eq!(Verdict::of(&s, &a), want, "seed {seed}");
+    }
+}

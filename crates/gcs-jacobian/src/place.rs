@@ -36,12 +36,20 @@
 //!   choice are the suspects; the placement starts again with the most recent suspect placed
 //!   after the entity that failed, or, when that was tried already, with both placed together
 //!   as one group (their coordinates solved at once, which closes a loop through both).
-//! - Every candidate root of a quadratic is tried, not only the one nearest the preference.
+//! - *Carriers* ([`with_carriers`]): when that is not enough, the placement runs again on the
+//!   system with a line through each segment that is tangent at a point to a circle, carrying
+//!   its tangencies; a line tangent to two circles is placed before the segment's points.
+//! - Every candidate root of a quadratic is tried, not only the one nearest the preference,
+//!   and every side of a factorised quadric (a few combinations), the preference's first.
 //!
 //! None of this changes what a witness is: every choice is a random point of the solution set
-//! of the constraints imposed at that step, and every parameter-free constraint is imposed
-//! (none is left to be checked, which would make the configuration special when it does not
-//! follow from the others), so the witness is a generic point of the constraints as before.
+//! of the constraints imposed at that step, so the witness is a generic point of the
+//! constraints as before. Every parameter-free constraint binding a group to placed entities
+//! is imposed, except one whose equation is neither linear nor a difference of squares in the
+//! group (a tangency at a point of a segment through that point, both being placed): it is
+//! checked exactly once the others have placed the group, and random choices satisfy it only
+//! where it follows from the constraints imposed — had it not, the placement would fail
+//! there, not build a special configuration.
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -392,6 +400,43 @@ pub(crate) fn place(
     scale: f64,
     options: &PlaceOptions,
 ) -> Result<Vec<Q>, PlaceFailure> {
+    let plain = place_in(system, layout, pref, scale, options);
+    if plain.is_ok() {
+        return plain;
+    }
+    // Again with the carriers of the segments tangent at a point (see [`with_carriers`]),
+    // placed from the preference's segments.
+    let Some((augmented, segments)) = with_carriers(system) else { return plain };
+    let aug_layout = Layout::new(&augmented);
+    let mut aug_pref = pref.to_vec();
+    aug_pref.resize(aug_layout.ncols(), Q::ZERO);
+    let carriers = augmented.entity_indices().skip(system.entities().len());
+    for (e, s) in carriers.zip(segments) {
+        let Some((a, b)) = system.segment_points(s) else { continue };
+        let (pa, pb) = (&pref[layout.columns(a)], &pref[layout.columns(b)]);
+        let mut line = [&pa[1] - &pb[1], &pb[0] - &pa[0], &pa[0] * &pb[1] - &pb[0] * &pa[1]];
+        if line[0].is_zero() && line[1].is_zero() {
+            // Points drawn together: the horizontal through them.
+            line = [Q::ZERO, Q::ONE, -pa[1].clone()];
+        }
+        for (col, v) in aug_layout.columns(e).zip(line) {
+            aug_pref[col] = v;
+        }
+    }
+    match place_in(&augmented, &aug_layout, &aug_pref, scale, options) {
+        Ok(x) => Ok(x[..layout.ncols()].to_vec()),
+        Err(_) => plain,
+    }
+}
+
+/// [`place`] in one system.
+fn place_in(
+    system: &System,
+    layout: &Layout,
+    pref: &[Q],
+    scale: f64,
+    options: &PlaceOptions,
+) -> Result<Vec<Q>, PlaceFailure> {
     let nent = system.entities().len();
     let ncons = system.constraints().len();
     let mut adjacent = vec![Vec::new(); nent];
@@ -512,8 +557,9 @@ pub(crate) fn place(
             // Modulo the prime, other random choices have a square root half the time: the
             // same order again, nothing to learn.
             retries += 1;
-        } else if !no_root && learnt < lessons && learned.learn(&f, layout) {
-            // (A square root missing over ℚ is no matter of order: another order is tried.)
+        } else if learnt < lessons && learned.learn(&f, layout) {
+            // (Over ℚ, a square root missing is a matter of order too: a point placed first
+            // on a circle is a rational point of it.)
             learnt += 1;
         } else {
             epoch += 1;
@@ -527,6 +573,107 @@ pub(crate) fn place(
         failure.get_or_insert(f.public);
     }
     Err(failure.unwrap_or(PlaceFailure { entity: EntityIdx(0), constraints: Vec::new() }))
+}
+
+/// The system with a *carrier* line for each 2D segment that is tangent at a point to a
+/// circle (`TangentAt`): a line through its two end points, with the segment's tangencies (at
+/// the same points) and the tangency to the circle those points are on, and its direction
+/// constraints, repeated on it. These constraints follow from the system's wherever the
+/// segment's points are apart (the carrier is then the segment's line), so its solutions are
+/// the system's, each with the lines of its segments; placing them lets the placement build a
+/// segment's line before its points — a line tangent to two circles (the common tangent of
+/// a slot or a connecting rod), whose tangency points are then its feet from the centres.
+/// `None` when no segment is tangent at a point, or an id is taken; else the system and the
+/// segments whose carriers it appends, in order.
+fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
+    use gcs_model::SystemBuilder;
+    if system.dim() != Dim::Two {
+        return None;
+    }
+    let id = |e: EntityIdx| system.entity(e).id.clone();
+    // The points on each circle: its arc's end points, the points incident to it, and the
+    // points coincident with those.
+    let mut coincident: Vec<(EntityIdx, EntityIdx)> = Vec::new();
+    let mut on_circle: Vec<(EntityIdx, EntityIdx)> = Vec::new();
+    for c in system.constraints() {
+        match c.signature {
+            Signature::CoincidentPoints(a, b) => coincident.push((a, b)),
+            Signature::IncidentPointCircle { point, circle } => on_circle.push((point, circle)),
+            _ => {}
+        }
+    }
+    for e in system.entity_indices() {
+        if let Some((s, t)) = system.arc_points(e) {
+            on_circle.extend([(s, e), (t, e)]);
+        }
+    }
+    let same_point = |p: EntityIdx, q: EntityIdx| {
+        // p and q in one class of coincident points.
+        let mut class = vec![p];
+        let mut i = 0;
+        while i < class.len() {
+            for (a, b) in &coincident {
+                for (x, y) in [(a, b), (b, a)] {
+                    if *x == class[i] && !class.contains(y) {
+                        class.push(*y);
+                    }
+                }
+            }
+            i += 1;
+        }
+        class.contains(&q)
+    };
+    let is_on = |p: EntityIdx, circle: EntityIdx| {
+        on_circle.iter().any(|(q, c)| *c == circle && same_point(p, *q))
+    };
+    let mut segments: Vec<EntityIdx> = Vec::new();
+    for c in system.constraints() {
+        if let Signature::TangentAtLineCircle { line, .. } = c.signature
+            && system.segment_points(line).is_some()
+            && !segments.contains(&line)
+        {
+            segments.push(line);
+        }
+    }
+    if segments.is_empty() {
+        return None;
+    }
+    let mut b = SystemBuilder::from_system(system.clone());
+    for &s in &segments {
+        let (from, to) = system.segment_points(s)?;
+        let l = format!("{}#carrier", id(s));
+        b.line(&l, None).ok()?;
+        let mut k = 0;
+        let mut add = |b: &mut SystemBuilder, kind: ConstraintKind, args: &[&str]| {
+            k += 1;
+            b.constraint(kind, &format!("{l}#{k}"), args, None).ok().map(|_| ())
+        };
+        add(&mut b, ConstraintKind::Incident, &[&id(from), &l])?;
+        add(&mut b, ConstraintKind::Incident, &[&id(to), &l])?;
+        let mut tangent_to: Vec<EntityIdx> = Vec::new();
+        for c in system.constraints() {
+            match c.signature {
+                Signature::TangentAtLineCircle { line, circle, at } if line == s => {
+                    add(&mut b, ConstraintKind::TangentAt, &[&l, &id(circle), &id(at)])?;
+                    if is_on(at, circle) && !tangent_to.contains(&circle) {
+                        tangent_to.push(circle);
+                        add(&mut b, ConstraintKind::Tangent, &[&l, &id(circle)])?;
+                    }
+                }
+                Signature::ParallelLineLine(x, y) | Signature::PerpendicularLineLine(x, y)
+                    if (x == s) != (y == s) =>
+                {
+                    let other = if x == s { y } else { x };
+                    add(&mut b, c.kind, &[&l, &id(other)])?;
+                }
+                Signature::Horizontal(x) | Signature::Vertical(x) if x == s => {
+                    add(&mut b, c.kind, &[&l])?;
+                }
+                _ => {}
+            }
+        }
+    }
+    Some((b.build(), segments))
 }
 
 impl Placer<'_> {
@@ -598,6 +745,11 @@ impl Placer<'_> {
             return Some(Vec::new());
         }
         let signature = self.system.constraint(c).signature;
+        // A fixed segment pins each of its points on its own (the rows of the others are
+        // constant: they hold at the preference, the sketch, while they are not placed).
+        if let Signature::Fix(_) = signature {
+            return Some(Vec::new());
+        }
         let reads = line_reads(signature);
         if reads.is_empty() || self.system.dim() != Dim::Two {
             return None;
@@ -954,6 +1106,7 @@ impl Placer<'_> {
             (0..n).map(|_| self.random_small() + Q::new(1, 7).unwrap_or(Q::ONE)).collect();
         let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
         let mut quads: Vec<(AffineMap, AffineMap)> = Vec::new();
+        let mut checked = false;
         for (ci, known) in ready {
             let ([l0, l1], local) = self.laws_at(*ci, known, &cols, &pref, &delta);
             let linearised = |law: &laws::Law<Q>| -> Vec<Linearised> {
@@ -980,7 +1133,11 @@ impl Placer<'_> {
                 } {
                     quads.push(maps);
                 } else {
-                    return None;
+                    // Neither linear nor a difference of squares (a tangency at a point of a
+                    // segment through that point): not imposed, only checked once the group is
+                    // placed by the others — which a random placement passes only where they
+                    // imply it.
+                    checked = true;
                 }
             }
         }
@@ -1007,8 +1164,11 @@ impl Placer<'_> {
             let k = self.layout.columns(m).len();
             let range = offset..offset + k;
             offset += k;
+            // (Only where a direction stays free for the quadrics: snapping it away would
+            // leave them no solution.)
             if self.layout.repr(m).is_none_or(|r| r.snap() != Snap::Direction)
                 || !projection_is_free(&space, range.clone())
+                || space.basis.len() < quads.len() + 1
             {
                 continue;
             }
@@ -1032,7 +1192,10 @@ impl Placer<'_> {
                 break;
             }
         }
-        if snap == Snap::Normal && normal_is_free(&space, n) {
+        if snap == Snap::Normal
+            && normal_is_free(&space, n)
+            && space.basis.len() >= quads.len() + 1 + usize::from(homogeneous)
+        {
             let rows = self.rational_normal(&pref, n);
             let mut with = linear.clone();
             with.extend(rows.iter().cloned());
@@ -1043,8 +1206,8 @@ impl Placer<'_> {
             }
         }
         let space = qla::solve(n, &linear)?;
-        let linear_only = quads.is_empty();
-        let x = if linear_only {
+        let linear_only = quads.is_empty() && !checked;
+        let x = if quads.is_empty() {
             // A few random points of the solutions, for one that is not degenerate.
             (0..3).find_map(|_| {
                 self.choose(&space, &pref, homogeneous).filter(|x| self.acceptable(x))
@@ -1159,15 +1322,16 @@ impl Placer<'_> {
         let quads: Vec<(AffineMap, AffineMap)> =
             quads.iter().map(|(p, m)| (on(p), on(m))).collect();
         let pref_t = if d == 0 { Vec::new() } else { space.project(pref) };
-        let mut linear: Vec<(Vec<Q>, Q)> = Vec::new();
+        let mut linear: Rows = Vec::new();
+        // The factorised quadrics, each with its sides (the preference's first).
+        let mut sides: Vec<Vec<Rows>> = Vec::new();
         let mut rest: Vec<(AffineMap, AffineMap)> = Vec::new();
         for q in quads {
             // |P|² = |M|² where P and M keep a fixed direction factorises over ℚ when the
             // product of the lengths of the directions is rational: p·|dP|² = ±m·|dP||dM|
-            // (a circle tangent to a line with a rational unit normal…). The sign is the
-            // preference's side.
-            if let Some(rows) = factorise(&q, &pref_t) {
-                linear.extend(rows);
+            // (a circle tangent to a line with a rational unit normal…).
+            if let Some(alternatives) = factorise(&q, &pref_t) {
+                sides.push(alternatives);
                 continue;
             }
             // Quadrics with the same quadratic part differ by a linear equation (two circles
@@ -1192,18 +1356,57 @@ impl Placer<'_> {
                     .or_else(|| map_ratio(&q.0, &r.0).map(|l| (q.1.clone(), r.1.scaled(&l))))?;
                 factorise(&pair, &pref_t)
             });
-            if let Some(rows) = derived {
-                linear.extend(rows);
+            if let Some(alternatives) = derived {
+                sides.push(alternatives);
             }
             rest.push(q);
         }
-        let sub = qla::solve(d, &linear)?;
+        // The sides of the factorised quadrics: the preference's first, then the others, by
+        // how many sides differ from it (a few combinations).
+        let mut combinations: Vec<Vec<usize>> = vec![vec![0; sides.len()]];
+        for k in 0..sides.len().min(4) {
+            let mut more = Vec::new();
+            for c in &combinations {
+                let mut other = c.clone();
+                if sides[k].len() > 1 {
+                    other[k] = 1;
+                    more.push(other);
+                }
+            }
+            combinations.extend(more);
+        }
+        combinations.sort_by_key(|c| c.iter().sum::<usize>());
+        for combination in combinations {
+            let mut with = linear.clone();
+            for (alternatives, &i) in sides.iter().zip(&combination) {
+                with.extend(alternatives[i].iter().cloned());
+            }
+            if let Some(x) = self.solve_rest(&space, &with, &rest, &pref_t, homogeneous) {
+                return Some(x);
+            }
+        }
+        None
+    }
+
+    /// [`Placer::solve_quadrics`] once its linear equations are known: the remaining quadrics
+    /// on the parameters `t` of the solutions `space` (`x = x0 + B t`).
+    fn solve_rest(
+        &mut self,
+        space: &Affine,
+        linear: &[(Vec<Q>, Q)],
+        rest: &[(AffineMap, AffineMap)],
+        pref_t: &[Q],
+        homogeneous: bool,
+    ) -> Option<Vec<Q>> {
+        let d = space.basis.len();
+        let sub = qla::solve(d, linear);
+        let sub = sub?;
         let holds = |rest: &[(AffineMap, AffineMap)], t: &[Q]| {
             rest.iter().all(|(p2, m2)| p2.norm2(t) == m2.norm2(t))
         };
         let Some((p, m)) = rest.first().cloned() else {
             for _ in 0..3 {
-                let t = self.choose(&sub, &pref_t, homogeneous)?;
+                let t = self.choose(&sub, pref_t, homogeneous)?;
                 let x = space.point(&t);
                 if self.acceptable(&x) {
                     return Some(x);
@@ -1214,8 +1417,8 @@ impl Placer<'_> {
         // P = R·M for a rational orthogonal R near the preference, a few tries.
         for attempt in 0..6 {
             let k = p.rows.len().max(m.rows.len());
-            let r = self.orthogonal_near(&p, &m, &pref_t, k, attempt);
-            let mut sys = linear.clone();
+            let r = self.orthogonal_near(&p, &m, pref_t, k, attempt);
+            let mut sys = linear.to_vec();
             for i in 0..k {
                 // P_i(t) − Σ_j R_ij M_j(t) = 0
                 let mut row = p.rows.get(i).map_or(vec![Q::ZERO; d], |r| r.0.clone());
@@ -1232,18 +1435,18 @@ impl Placer<'_> {
                 if homogeneous && within.basis.is_empty() {
                     continue;
                 }
-                let t = self.choose(&within, &pref_t, homogeneous)?;
+                let t = self.choose(&within, pref_t, homogeneous)?;
                 let x = space.point(&t);
-                if self.acceptable(&x) && holds(&rest, &t) {
+                if self.acceptable(&x) && holds(rest, &t) {
                     return Some(x);
                 }
             }
         }
         // A one-parameter family: intersect with the quadric, if the roots are rational; the
         // root nearer the preference first, then the other.
-        self.univariate(&sub, &p, &m, &pref_t, homogeneous)
+        self.univariate(&sub, &p, &m, pref_t, homogeneous)
             .into_iter()
-            .filter(|t| holds(&rest, t))
+            .filter(|t| holds(rest, t))
             .map(|t| space.point(&t))
             .find(|x| self.acceptable(x))
     }
@@ -1489,39 +1692,41 @@ fn fixed_direction(map: &AffineMap) -> Option<(Vec<Q>, Vec<Q>, Q)> {
 /// Linear equations equivalent to `|P|² = |M|²` (on the preference's branch) when `P` and
 /// `M` have fixed directions whose lengths have a rational product, or when one side is
 /// identically zero.
-fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<(Vec<Q>, Q)>> {
+fn factorise(q: &(AffineMap, AffineMap), pref: &[Q]) -> Option<Vec<Rows>> {
     let (p, m) = q;
     let zero =
         |map: &AffineMap| map.rows.iter().all(|(g, c)| c.is_zero() && g.iter().all(Q::is_zero));
-    let as_rows = |map: &AffineMap| -> Vec<(Vec<Q>, Q)> {
+    let as_rows = |map: &AffineMap| -> Rows {
         map.rows.iter().map(|(g, c)| (g.clone(), -c.clone())).collect()
     };
     if zero(m) {
-        return Some(as_rows(p));
+        return Some(vec![as_rows(p)]);
     }
     if zero(p) {
-        return Some(as_rows(m));
+        return Some(vec![as_rows(m)]);
     }
     let (dp, lp, lp0) = fixed_direction(p)?;
     let (dm, lm, lm0) = fixed_direction(m)?;
     let (np, nm) = (qla::dot(&dp, &dp), qla::dot(&dm, &dm));
     let l = qla::sqrt(&(&np * &nm))?;
-    // p(x)·|dP|² − σ·m(x)·L = 0 with σ = ±1 from the preference.
+    // p(x)·|dP|² − σ·m(x)·L = 0 with σ = ±1, the preference's first.
     let pv = qla::dot(&lp, pref) + &lp0;
     let mv = qla::dot(&lm, pref) + &lm0;
     let (plus, minus) = (&pv * &np - &mv * &l, &pv * &np + &mv * &l);
     // The side that holds exactly at the preference, else the nearer one (modulo the prime, a
     // residue has no size: a random one).
-    let sigma = if plus.is_zero()
+    let first = if plus.is_zero()
         || (!minus.is_zero() && qla::to_f64(&plus).abs() <= qla::to_f64(&minus).abs())
     {
         Q::ONE
     } else {
         -Q::ONE
     };
-    let row: Vec<Q> = lp.iter().zip(&lm).map(|(a, b)| a * &np - &sigma * b * &l).collect();
-    let rhs = -(&lp0 * &np - &sigma * &lm0 * &l);
-    Some(vec![(row, rhs)])
+    let side = |sigma: Q| -> Rows {
+        let row: Vec<Q> = lp.iter().zip(&lm).map(|(a, b)| a * &np - &sigma * b * &l).collect();
+        vec![(row, -(&lp0 * &np - &sigma * &lm0 * &l))]
+    };
+    Some(vec![side(first.clone()), side(-first)])
 }
 
 /// The difference-of-squares form of a quadratic constraint, from its laws at `pref` and at
@@ -1604,6 +1809,9 @@ fn restrict<F: gcs_rank::Field>(d: &Dual<F>, local_cols: &[usize], cols: &[usize
 
 /// The value and gradient of an equation at a point.
 type Linearised = (Q, Vec<Q>);
+
+/// Linear equations `g·x = c`.
+type Rows = Vec<(Vec<Q>, Q)>;
 
 /// `x ↦ (g_i · x + c_i)_i`.
 #[derive(Clone, Debug)]
