@@ -9,7 +9,7 @@ use gcs_analysis::{
 };
 use gcs_model::generate::{framework, laman_edges, random_coords};
 use gcs_model::rng::SplitMix64;
-use gcs_model::{Dim, System};
+use gcs_model::{Dim, EntityIdx, System};
 use proptest::prelude::*;
 
 fn model(name: &str) -> System {
@@ -22,18 +22,28 @@ fn run(s: &System, decompose: bool) -> Analysis {
     analyze(s, &AnalysisOptions { decompose, ..AnalysisOptions::default() }).unwrap()
 }
 
+/// Entity ids, segments left out, as a sorted set.
+fn entity_set(s: &System, entities: &[EntityIdx]) -> BTreeSet<String> {
+    entities
+        .iter()
+        .filter(|e| s.segment_points(**e).is_none())
+        .map(|e| s.entity(*e).id.clone())
+        .collect()
+}
+
+/// The models of `data/paper` and `data/sketches`, each with its name there (`paper/kite.ron`).
+fn paper_and_sketch_models() -> Vec<(String, System)> {
+    gcs_suite::data_files()
+        .iter()
+        .filter_map(|f| f.strip_prefix("data/"))
+        .filter(|f| f.starts_with("paper/") || f.starts_with("sketches/"))
+        .map(|name| (name.to_owned(), model(name)))
+        .collect()
+}
+
 /// Cluster entity ids, segments left out, as sorted sets.
 fn clusters(s: &System, a: &Analysis) -> Vec<BTreeSet<String>> {
-    a.clusters
-        .iter()
-        .map(|c| {
-            c.entities
-                .iter()
-                .filter(|e| s.segment_points(**e).is_none())
-                .map(|e| s.entity(*e).id.clone())
-                .collect()
-        })
-        .collect()
+    a.clusters.iter().map(|c| entity_set(s, &c.entities)).collect()
 }
 
 fn set(ids: &[&str]) -> BTreeSet<String> {
@@ -83,27 +93,21 @@ fn flow_fig1b_clusters() {
 
 #[test]
 fn every_model_is_covered_and_every_cluster_is_rigid_alone() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
-    for sub in ["paper", "sketches"] {
-        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
-            let path = entry.unwrap().path();
-            let name = format!("{sub}/{}", path.file_name().unwrap().to_string_lossy());
-            let s = model(&name);
-            let a = run(&s, false);
-            for e in s.entity_indices() {
-                assert!(
-                    a.clusters.iter().any(|c| c.entities.contains(&e)),
-                    "{name}: {e:?} in no cluster"
-                );
-            }
-            // Cut out with its constraints, a cluster with more than one entity is rigid (up to
-            // absolute constraints: a grounded cluster has no trivial motion left, a free one
-            // only displacements).
-            for c in a.clusters.iter().filter(|c| c.entities.len() > 1) {
-                let cut = cut_out(&s, &c.entities, &c.constraints);
-                let ca = run(&cut, false);
-                assert_eq!(ca.dof, 0, "{name}: cluster {:?} is not rigid alone", c.entities);
-            }
+    for (name, s) in paper_and_sketch_models() {
+        let a = run(&s, false);
+        for e in s.entity_indices() {
+            assert!(
+                a.clusters.iter().any(|c| c.entities.contains(&e)),
+                "{name}: {e:?} in no cluster"
+            );
+        }
+        // Cut out with its constraints, a cluster with more than one entity is rigid (up to
+        // absolute constraints: a grounded cluster has no trivial motion left, a free one
+        // only displacements).
+        for c in a.clusters.iter().filter(|c| c.entities.len() > 1) {
+            let cut = cut_out(&s, &c.entities, &c.constraints);
+            let ca = run(&cut, false);
+            assert_eq!(ca.dof, 0, "{name}: cluster {:?} is not rigid alone", c.entities);
         }
     }
 }
@@ -159,16 +163,7 @@ fn cut_out(
 }
 
 fn children_sets(s: &System, n: &DecompositionNode) -> Vec<BTreeSet<String>> {
-    n.children
-        .iter()
-        .map(|c| {
-            c.entities
-                .iter()
-                .filter(|e| s.segment_points(**e).is_none())
-                .map(|e| s.entity(*e).id.clone())
-                .collect()
-        })
-        .collect()
+    n.children.iter().map(|c| entity_set(s, &c.entities)).collect()
 }
 
 fn all_nodes(n: &DecompositionNode, out: &mut Vec<BTreeSet<gcs_model::EntityIdx>>) {
@@ -233,27 +228,20 @@ fn fig9_decomposable_and_indecomposable() {
 
 #[test]
 fn methods_agree_on_every_model() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
-    for sub in ["paper", "sketches"] {
-        for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
-            let path = entry.unwrap().path();
-            let name = format!("{sub}/{}", path.file_name().unwrap().to_string_lossy());
-            let s = model(&name);
-            let base = run(&s, false).clusters;
-            for method in [ClusterMethod::Kernel, ClusterMethod::Exchange, ClusterMethod::Eliminate]
-            {
-                for backend in [Backend::Exact, Backend::ModP, Backend::Rational] {
-                    let o = AnalysisOptions {
-                        cluster_method: method,
-                        backend,
-                        ..AnalysisOptions::default()
-                    };
-                    assert_eq!(
-                        analyze(&s, &o).unwrap().clusters,
-                        base,
-                        "{name} {method:?} {backend:?}"
-                    );
-                }
+    for (name, s) in paper_and_sketch_models() {
+        let base = run(&s, false).clusters;
+        for method in [ClusterMethod::Kernel, ClusterMethod::Exchange, ClusterMethod::Eliminate] {
+            for backend in [Backend::Exact, Backend::ModP, Backend::Rational] {
+                let o = AnalysisOptions {
+                    cluster_method: method,
+                    backend,
+                    ..AnalysisOptions::default()
+                };
+                assert_eq!(
+                    analyze(&s, &o).unwrap().clusters,
+                    base,
+                    "{name} {method:?} {backend:?}"
+                );
             }
         }
     }
