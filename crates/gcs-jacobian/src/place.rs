@@ -200,17 +200,17 @@ impl Directions {
         }
         use Signature as S;
         for c in system.constraints() {
-            match c.signature {
-                S::ParallelLineLine(a, b) => d.union(a, b, 0),
-                S::PerpendicularLineLine(a, b) => d.union(a, b, 1),
-                _ => {}
+            if let S::ParallelLineLine(a, b) = c.signature {
+                d.union(a, b, 0);
+            } else if let S::PerpendicularLineLine(a, b) = c.signature {
+                d.union(a, b, 1);
             }
         }
         for c in system.constraints() {
-            match c.signature {
-                S::Horizontal(a) => d.anchor_at(a, 0),
-                S::Vertical(a) => d.anchor_at(a, 1),
-                _ => {}
+            if let S::Horizontal(a) = c.signature {
+                d.anchor_at(a, 0);
+            } else if let S::Vertical(a) = c.signature {
+                d.anchor_at(a, 1);
             }
         }
         for e in system.entity_indices() {
@@ -596,10 +596,10 @@ fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
     let mut coincident: Vec<(EntityIdx, EntityIdx)> = Vec::new();
     let mut on_circle: Vec<(EntityIdx, EntityIdx)> = Vec::new();
     for c in system.constraints() {
-        match c.signature {
-            Signature::CoincidentPoints(a, b) => coincident.push((a, b)),
-            Signature::IncidentPointCircle { point, circle } => on_circle.push((point, circle)),
-            _ => {}
+        if let Signature::CoincidentPoints(a, b) = c.signature {
+            coincident.push((a, b));
+        } else if let Signature::IncidentPointCircle { point, circle } = c.signature {
+            on_circle.push((point, circle));
         }
     }
     for e in system.entity_indices() {

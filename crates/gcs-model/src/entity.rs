@@ -254,6 +254,20 @@ impl Geometry {
         }
     }
 
+    /// Whether the kind has a centre that constraints can name (`<id>.center`: circles, arcs,
+    /// spheres), and its sketch position.
+    pub fn center(&self) -> Option<Option<&Coords>> {
+        match self {
+            Geometry::Circle { center, .. }
+            | Geometry::Sphere { center, .. }
+            | Geometry::Arc { center, .. } => Some(center.as_ref()),
+            Geometry::Point { .. }
+            | Geometry::Line { .. }
+            | Geometry::Segment { .. }
+            | Geometry::Plane { .. } => None,
+        }
+    }
+
     /// The entities a composite entity is built on (a segment's two points), in order; empty
     /// for the others.
     pub fn parts(&self) -> Vec<EntityIdx> {

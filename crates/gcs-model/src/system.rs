@@ -610,13 +610,8 @@ impl SystemBuilder {
             && let Some(curve) = id.strip_suffix(".center")
             && let Some(Item::Entity(c)) = self.system.ids.get(curve).copied()
         {
-            let (center, round) = match &self.system.entity(c).geometry {
-                Geometry::Circle { center, .. }
-                | Geometry::Sphere { center, .. }
-                | Geometry::Arc { center, .. } => (center.clone(), true),
-                _ => (None, false),
-            };
-            if round {
+            if let Some(center) = self.system.entity(c).geometry.center() {
+                let center = center.cloned();
                 self.push_owned_entity(id, Geometry::Point { at: center }, &[], Some(c))?;
                 self.push_constraint(
                     ConstraintKind::Concentric,
