@@ -18,6 +18,8 @@
 
 use std::fmt;
 
+use super::geometry::parse_float_token;
+
 /// Why a BRep text could not be read (a message for a `skipped` reason).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct BrepError(pub(crate) String);
@@ -349,7 +351,7 @@ impl<'a> Tokens<'a> {
 
     fn real(&mut self) -> Res<f64> {
         let t = self.next()?;
-        let x = parse_real(t).ok_or_else(|| BrepError(format!("'{t}' is not a number")))?;
+        let x = parse_float_token(t).ok_or_else(|| BrepError(format!("'{t}' is not a number")))?;
         Ok(x)
     }
 
@@ -394,18 +396,6 @@ impl<'a> Tokens<'a> {
     fn expect(&mut self, word: &str) -> Res<()> {
         let t = self.next()?;
         if t == word { Ok(()) } else { err(format!("expected '{word}', found '{t}'")) }
-    }
-}
-
-fn parse_real(t: &str) -> Option<f64> {
-    if let Ok(x) = t.parse::<f64>() {
-        return Some(x);
-    }
-    match t.to_ascii_lowercase().as_str() {
-        "nan" | "-nan" | "+nan" | "nan(ind)" | "-nan(ind)" => Some(f64::NAN),
-        "inf" | "+inf" | "infinity" => Some(f64::INFINITY),
-        "-inf" | "-infinity" => Some(f64::NEG_INFINITY),
-        _ => None,
     }
 }
 

@@ -74,9 +74,15 @@ pub(crate) struct Num {
     pub(crate) exact: Option<Number>,
 }
 
-/// Parses a float as C++ streams write it (`nan`, `inf` included).
+/// Parses a float as C++ streams write it (`nan`, `inf` included), white space around it
+/// ignored.
 pub(crate) fn parse_float(t: &str) -> Option<f64> {
-    let t = t.trim();
+    parse_float_token(t.trim())
+}
+
+/// Parses one token of a float as C++ streams write it (`nan`, `inf` included): the numbers of
+/// the XML attributes and of the BRep shape data.
+pub(crate) fn parse_float_token(t: &str) -> Option<f64> {
     if let Ok(x) = t.parse::<f64>() {
         return Some(x);
     }
