@@ -79,6 +79,22 @@ pub struct Sketch {
     pub source_verdict: Vec<(String, String)>,
 }
 
+impl Sketch {
+    /// An empty planar sketch, for a reader to fill.
+    pub(crate) fn planar(name: String, label: Option<String>) -> Sketch {
+        Sketch {
+            name,
+            label,
+            dim: 2,
+            entities: Vec::new(),
+            constraints: Vec::new(),
+            skipped: Vec::new(),
+            notes: Vec::new(),
+            source_verdict: Vec::new(),
+        }
+    }
+}
+
 /// An item a reader could not express, and why.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Skipped {

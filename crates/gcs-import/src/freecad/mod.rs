@@ -306,16 +306,7 @@ fn read_sketch(
     before_1_0: &Option<String>,
 ) -> Result<ir::Sketch, ImportError> {
     let props = properties(object);
-    let mut sketch = ir::Sketch {
-        name: format!("{stem}/{name}"),
-        label: string_value(props.get("Label")),
-        dim: 2,
-        entities: Vec::new(),
-        constraints: Vec::new(),
-        skipped: Vec::new(),
-        notes: Vec::new(),
-        source_verdict: Vec::new(),
-    };
+    let mut sketch = ir::Sketch::planar(format!("{stem}/{name}"), string_value(props.get("Label")));
     let mut table = GeoTable { before_1_0: before_1_0.clone(), ..GeoTable::default() };
 
     // The sketch's own geometry.

@@ -138,16 +138,7 @@ fn read_sketch(
         move |message: String| ImportError::new(file, message).in_element(element)
     };
     let label = json::opt_string(map, "name").map_err(at(path.to_owned()))?.map(str::to_owned);
-    let mut sketch = ir::Sketch {
-        name,
-        label,
-        dim: 2,
-        entities: Vec::new(),
-        constraints: Vec::new(),
-        skipped: Vec::new(),
-        notes: Vec::new(),
-        source_verdict: Vec::new(),
-    };
+    let mut sketch = ir::Sketch::planar(name, label);
     let mut table = Table::default();
     for (j, element) in
         json::array(map, "entities").map_err(at(path.to_owned()))?.iter().enumerate()
