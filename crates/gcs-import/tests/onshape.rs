@@ -5,32 +5,10 @@
 mod common;
 
 use std::collections::BTreeMap;
-use std::io::Read;
 use std::path::Path;
 
 use gcs_import::ir::{Constraint, Entity, Geometry, Kind, Number, Part, Ref, Sketch};
 use gcs_import::{Format, ImportError};
-
-/// SketchGraphs' sample archive, unpacked in memory: (path inside the archive, bytes).
-fn corpus() -> Option<Vec<(String, Vec<u8>)>> {
-    let dir = common::external()?;
-    let archive = std::fs::read(dir.join("SketchGraphs/tests/testdata/sample_json.tar.xz"))
-        .expect("the sample archive");
-    let mut tar = Vec::new();
-    lzma_rs::xz_decompress(&mut archive.as_slice(), &mut tar).expect("an xz archive");
-    let mut files = Vec::new();
-    for entry in tar::Archive::new(tar.as_slice()).entries().expect("a tar archive") {
-        let mut entry = entry.expect("a tar entry");
-        let path = entry.path().expect("a path").to_string_lossy().into_owned();
-        if path.ends_with(".json") {
-            let mut bytes = Vec::new();
-            entry.read_to_end(&mut bytes).expect("readable");
-            files.push((path, bytes));
-        }
-    }
-    files.sort();
-    Some(files)
-}
 
 fn read_corpus_file<'a>(files: &'a [(String, Vec<u8>)], stem: &str) -> (&'a str, Vec<Sketch>) {
     let (path, bytes) =
@@ -104,7 +82,7 @@ fn category(reason: &str) -> &'static str {
 
 #[test]
 fn every_sample_file_reads_with_the_expected_totals() {
-    let Some(files) = corpus() else { return };
+    let Some(files) = common::onshape_files() else { return };
     assert_eq!(files.len(), 84);
     let mut sketches = Vec::new();
     let mut source_constraints = 0;
@@ -203,7 +181,7 @@ fn direction(s: &Sketch, id: &str) -> Option<[f64; 2]> {
 /// vertical distances and the orientation of angles.
 #[test]
 fn the_sample_drawings_satisfy_the_constraints_read() {
-    let Some(files) = corpus() else { return };
+    let Some(files) = common::onshape_files() else { return };
     let mut checked = BTreeMap::new();
     for (path, bytes) in &files {
         for s in gcs_import::onshape::read(path, bytes).expect("reads") {
@@ -264,7 +242,7 @@ fn the_sample_drawings_satisfy_the_constraints_read() {
 /// than the opposite point of the circle, for clockwise and counter-clockwise Onshape arcs.
 #[test]
 fn fillet_arcs_bulge_toward_their_corner() {
-    let Some(files) = corpus() else { return };
+    let Some(files) = common::onshape_files() else { return };
     let (mut checked, mut clockwise_checked) = (0, 0);
     for (path, bytes) in &files {
         let json: serde_json::Value = serde_json::from_slice(bytes).expect("JSON");
@@ -325,7 +303,7 @@ fn fillet_arcs_bulge_toward_their_corner() {
 
 #[test]
 fn sample_facts_checked_in_the_json() {
-    let Some(files) = corpus() else { return };
+    let Some(files) = common::onshape_files() else { return };
 
     // Two sketch features, named by their index; lines from point, direction and parameters.
     let (_, s) = read_corpus_file(&files, "00270969_57f2a049a86627109b6a04e1_featurescript_008");

@@ -53,7 +53,6 @@ pub fn files_with_suffix(dir: &Path, suffix: &str) -> Vec<PathBuf> {
 /// documents, and the Onshape JSON files of SketchGraphs' sample (unpacked from its `.tar.xz`,
 /// named `SketchGraphs/<path in the archive>`), sorted by name. `None` without the corpus.
 pub fn sketch_files() -> Option<Vec<(String, Vec<u8>)>> {
-    use std::io::Read;
     let dir = external()?;
     let mut files = Vec::new();
     for (sub, suffix) in [("solvespace", ".slvs"), ("FreeCAD_Assembly4", ".fcstd")] {
@@ -62,19 +61,39 @@ pub fn sketch_files() -> Option<Vec<(String, Vec<u8>)>> {
             files.push((name, std::fs::read(&path).expect("a corpus file")));
         }
     }
+    files.extend(
+        sketchgraphs_sample(&dir)
+            .into_iter()
+            .map(|(path, bytes)| (format!("SketchGraphs/{path}"), bytes)),
+    );
+    files.sort();
+    Some(files)
+}
+
+/// The Onshape JSON files of SketchGraphs' sample, unpacked in memory as `(path inside the
+/// archive, bytes)`, sorted by path. `None` without the corpus.
+pub fn onshape_files() -> Option<Vec<(String, Vec<u8>)>> {
+    Some(sketchgraphs_sample(&external()?))
+}
+
+/// SketchGraphs' sample archive of the corpus at `dir`, unpacked: its `.json` files as
+/// `(path inside the archive, bytes)`, sorted by path.
+fn sketchgraphs_sample(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    use std::io::Read;
     let archive = std::fs::read(dir.join("SketchGraphs/tests/testdata/sample_json.tar.xz"))
         .expect("the sample archive");
     let mut tar = Vec::new();
     lzma_rs::xz_decompress(&mut archive.as_slice(), &mut tar).expect("an xz archive");
+    let mut files = Vec::new();
     for entry in tar::Archive::new(tar.as_slice()).entries().expect("a tar archive") {
         let mut entry = entry.expect("a tar entry");
         let path = entry.path().expect("a path").to_string_lossy().into_owned();
         if path.ends_with(".json") {
             let mut bytes = Vec::new();
             entry.read_to_end(&mut bytes).expect("readable");
-            files.push((format!("SketchGraphs/{path}"), bytes));
+            files.push((path, bytes));
         }
     }
     files.sort();
-    Some(files)
+    files
 }
