@@ -123,16 +123,10 @@ pub struct Share {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Network {
-    dim: Dim,
-    objects: Vec<Object>,
-    object_dof: Vec<u64>,
+    parts: Parts,
     local_of_entity: Vec<u32>,
     frame: Option<usize>,
-    constraints: Vec<ConstraintIdx>,
-    constraint_doc: Vec<u64>,
-    constraint_objects: Vec<Vec<u32>>,
     local_of_constraint: Vec<u32>,
-    segments: Vec<(EntityIdx, u32, u32)>,
     graph: FlowGraph,
     source_arcs: Vec<usize>,
     link_arcs: Vec<Vec<usize>>,
@@ -140,10 +134,9 @@ pub struct Network {
 }
 
 /// The parts a network is built from, before its nodes are numbered.
+#[derive(Clone, Debug)]
 struct Parts {
     dim: Dim,
-    entity_count: usize,
-    constraint_count: usize,
     objects: Vec<Object>,
     object_dof: Vec<u64>,
     constraints: Vec<ConstraintIdx>,
@@ -203,71 +196,55 @@ impl Network {
             })
             .filter(|&(_, a, b)| a != NONE && b != NONE)
             .collect();
-        Network::build(Parts {
+        let parts = Parts {
             dim,
-            entity_count: system.entities().len(),
-            constraint_count: system.constraints().len(),
             objects,
             object_dof,
             constraints,
             constraint_doc,
             constraint_objects,
             segments,
-        })
+        };
+        Network::build(parts, system.entities().len(), system.constraints().len())
     }
 
-    fn build(parts: Parts) -> Network {
-        let Parts {
-            dim,
-            entity_count,
-            constraint_count,
-            objects,
-            object_dof,
-            constraints,
-            constraint_doc,
-            constraint_objects,
-            segments,
-        } = parts;
-        let m = constraints.len();
+    /// Numbers the nodes of `parts` (of a system of `entity_count` entities and
+    /// `constraint_count` constraints) and computes the base maximum flow.
+    fn build(parts: Parts, entity_count: usize, constraint_count: usize) -> Network {
+        let m = parts.constraints.len();
         let mut local_of_entity = vec![NONE; entity_count];
         let mut frame = None;
-        for (j, o) in objects.iter().enumerate() {
+        for (j, o) in parts.objects.iter().enumerate() {
             match o {
                 Object::Entity(e) => local_of_entity[e.index()] = j as u32,
                 Object::Frame => frame = Some(j),
             }
         }
         let mut local_of_constraint = vec![NONE; constraint_count];
-        for (i, c) in constraints.iter().enumerate() {
+        for (i, c) in parts.constraints.iter().enumerate() {
             local_of_constraint[c.index()] = i as u32;
         }
-        let mut graph = FlowGraph::new(2 + m + objects.len());
+        let mut graph = FlowGraph::new(2 + m + parts.objects.len());
         let mut source_arcs = Vec::with_capacity(m);
         let mut link_arcs = Vec::with_capacity(m);
         for i in 0..m {
-            source_arcs.push(graph.add_arc(SOURCE, 2 + i, constraint_doc[i]));
+            source_arcs.push(graph.add_arc(SOURCE, 2 + i, parts.constraint_doc[i]));
             link_arcs.push(
-                constraint_objects[i]
+                parts.constraint_objects[i]
                     .iter()
                     .map(|&j| graph.add_arc(2 + i, 2 + m + j as usize, INFINITE))
                     .collect(),
             );
         }
-        for (j, &dof) in object_dof.iter().enumerate() {
+        for (j, &dof) in parts.object_dof.iter().enumerate() {
             graph.add_arc(2 + m + j, SINK, dof);
         }
         let base_flow = graph.max_flow(SOURCE, SINK);
         Network {
-            dim,
-            objects,
-            object_dof,
+            parts,
             local_of_entity,
             frame,
-            constraints,
-            constraint_doc,
-            constraint_objects,
             local_of_constraint,
-            segments,
             graph,
             source_arcs,
             link_arcs,
@@ -282,71 +259,79 @@ impl Network {
     /// [`RigidityError::NotAnObject`] or [`RigidityError::NoFrame`] for an object this network
     /// does not have.
     pub fn induced(&self, objects: &[Object]) -> Result<Network, RigidityError> {
-        let mut keep = vec![false; self.objects.len()];
+        let mut keep = vec![false; self.parts.objects.len()];
         for &o in objects {
             keep[self.local(o)?] = true;
         }
-        let mut new_local = vec![NONE; self.objects.len()];
+        let mut new_local = vec![NONE; self.parts.objects.len()];
         let mut sub_objects = Vec::new();
         let mut sub_dof = Vec::new();
-        for j in 0..self.objects.len() {
+        for j in 0..self.parts.objects.len() {
             if keep[j] {
                 new_local[j] = sub_objects.len() as u32;
-                sub_objects.push(self.objects[j]);
-                sub_dof.push(self.object_dof[j]);
+                sub_objects.push(self.parts.objects[j]);
+                sub_dof.push(self.parts.object_dof[j]);
             }
         }
         let mut constraints = Vec::new();
         let mut constraint_doc = Vec::new();
         let mut constraint_objects = Vec::new();
-        for i in 0..self.constraints.len() {
-            if self.constraint_objects[i].iter().all(|&j| keep[j as usize]) {
-                constraints.push(self.constraints[i]);
-                constraint_doc.push(self.constraint_doc[i]);
+        for i in 0..self.parts.constraints.len() {
+            if self.parts.constraint_objects[i].iter().all(|&j| keep[j as usize]) {
+                constraints.push(self.parts.constraints[i]);
+                constraint_doc.push(self.parts.constraint_doc[i]);
                 constraint_objects.push(
-                    self.constraint_objects[i].iter().map(|&j| new_local[j as usize]).collect(),
+                    self.parts.constraint_objects[i]
+                        .iter()
+                        .map(|&j| new_local[j as usize])
+                        .collect(),
                 );
             }
         }
         let segments = self
+            .parts
             .segments
             .iter()
             .filter(|&&(_, a, b)| keep[a as usize] && keep[b as usize])
             .map(|&(s, a, b)| (s, new_local[a as usize], new_local[b as usize]))
             .collect();
-        Ok(Network::build(Parts {
-            dim: self.dim,
-            entity_count: self.local_of_entity.len(),
-            constraint_count: self.local_of_constraint.len(),
+        let parts = Parts {
+            dim: self.parts.dim,
             objects: sub_objects,
             object_dof: sub_dof,
             constraints,
             constraint_doc,
             constraint_objects,
             segments,
-        }))
+        };
+        Ok(Network::build(parts, self.local_of_entity.len(), self.local_of_constraint.len()))
     }
 
     /// The dimension of the system.
     pub fn dim(&self) -> Dim {
-        self.dim
+        self.parts.dim
     }
 
     /// The objects, entities in file order then the frame if any.
     pub fn objects(&self) -> &[Object] {
-        &self.objects
+        &self.parts.objects
     }
 
     /// The constraints (nodes of the network), in file order.
     pub fn constraints(&self) -> &[ConstraintIdx] {
-        &self.constraints
+        &self.parts.constraints
     }
 
     /// The objects a constraint binds (segments replaced by their points, the frame for an
     /// absolute constraint), or `None` if it is not in the network.
     pub fn constraint_objects(&self, c: ConstraintIdx) -> Option<Vec<Object>> {
         let i = self.constraint_local(c).ok()?;
-        Some(self.constraint_objects[i].iter().map(|&j| self.objects[j as usize]).collect())
+        Some(
+            self.parts.constraint_objects[i]
+                .iter()
+                .map(|&j| self.parts.objects[j as usize])
+                .collect(),
+        )
     }
 
     /// Whether the network has the reference frame object (the system has absolute
@@ -357,12 +342,12 @@ impl Network {
 
     /// Degrees of freedom of an object (the frame: the number of displacements).
     pub fn object_dof(&self, object: Object) -> Result<usize, RigidityError> {
-        Ok(self.object_dof[self.local(object)?] as usize)
+        Ok(self.parts.object_dof[self.local(object)?] as usize)
     }
 
     /// ΣDOC of the constraints: what the source offers.
     pub fn demand(&self) -> u64 {
-        self.constraint_doc.iter().sum()
+        self.parts.constraint_doc.iter().sum()
     }
 
     /// Value of the base maximum flow (without overload).
@@ -379,7 +364,7 @@ impl Network {
     /// The whole system's degrees of freedom by count: ΣDOF(objects, frame included) −
     /// ΣDOC.
     pub fn dof(&self) -> i64 {
-        self.object_dof.iter().sum::<u64>() as i64 - self.demand() as i64
+        self.parts.object_dof.iter().sum::<u64>() as i64 - self.demand() as i64
     }
 
     /// The base flow on the arc `s → c`: how much of the constraint's DOC is distributed.
@@ -396,8 +381,8 @@ impl Network {
             for (k, &arc) in arcs.iter().enumerate() {
                 let amount = self.graph.flow(arc);
                 if amount > 0 {
-                    let object = self.objects[self.constraint_objects[i][k] as usize];
-                    out.push(Share { constraint: self.constraints[i], object, amount });
+                    let object = self.parts.objects[self.parts.constraint_objects[i][k] as usize];
+                    out.push(Share { constraint: self.parts.constraints[i], object, amount });
                 }
             }
         }
@@ -415,8 +400,8 @@ impl Network {
     /// from the first such constraint (objects reachable from it in the residual graph, and the
     /// constraints they induce); `None` when the base flow is saturating.
     pub fn over_constrained(&mut self) -> Option<Subsystem> {
-        let i =
-            (0..self.constraints.len()).find(|&i| self.graph.residual(self.source_arcs[i]) > 0)?;
+        let i = (0..self.parts.constraints.len())
+            .find(|&i| self.graph.residual(self.source_arcs[i]) > 0)?;
         let reach = self.graph.reachable(&[2 + i]);
         Some(self.subsystem_from_nodes(&reach))
     }
@@ -467,7 +452,7 @@ impl Network {
         if attach.is_empty() {
             return Err(RigidityError::EmptyAttachment);
         }
-        let m = self.constraints.len();
+        let m = self.parts.constraints.len();
         let seeds =
             attach.iter().map(|&o| Ok(2 + m + self.local(o)?)).collect::<Result<Vec<_>, _>>()?;
         Ok(self.overload(&seeds, k as u64))
@@ -490,7 +475,7 @@ impl Network {
     /// [`RigidityError::NotAnObject`] or [`RigidityError::NoFrame`] for an object this network
     /// does not have.
     pub fn subsystem(&self, objects: &[Object]) -> Result<Subsystem, RigidityError> {
-        let mut keep = vec![false; self.objects.len()];
+        let mut keep = vec![false; self.parts.objects.len()];
         for &o in objects {
             keep[self.local(o)?] = true;
         }
@@ -498,8 +483,8 @@ impl Network {
     }
 
     fn subsystem_from_nodes(&self, reach: &[bool]) -> Subsystem {
-        let m = self.constraints.len();
-        let keep: Vec<bool> = (0..self.objects.len()).map(|j| reach[2 + m + j]).collect();
+        let m = self.parts.constraints.len();
+        let keep: Vec<bool> = (0..self.parts.objects.len()).map(|j| reach[2 + m + j]).collect();
         self.subsystem_from_members(&keep)
     }
 
@@ -507,9 +492,9 @@ impl Network {
         let mut objects = Vec::new();
         let mut grounded = false;
         let mut dof = 0i64;
-        for (j, o) in self.objects.iter().enumerate() {
+        for (j, o) in self.parts.objects.iter().enumerate() {
             if keep[j] {
-                dof += self.object_dof[j] as i64;
+                dof += self.parts.object_dof[j] as i64;
                 match o {
                     Object::Entity(e) => objects.push(*e),
                     Object::Frame => grounded = true,
@@ -517,13 +502,14 @@ impl Network {
             }
         }
         let mut constraints = Vec::new();
-        for i in 0..self.constraints.len() {
-            if self.constraint_objects[i].iter().all(|&j| keep[j as usize]) {
-                constraints.push(self.constraints[i]);
-                dof -= self.constraint_doc[i] as i64;
+        for i in 0..self.parts.constraints.len() {
+            if self.parts.constraint_objects[i].iter().all(|&j| keep[j as usize]) {
+                constraints.push(self.parts.constraints[i]);
+                dof -= self.parts.constraint_doc[i] as i64;
             }
         }
         let segments = self
+            .parts
             .segments
             .iter()
             .filter(|&&(_, a, b)| keep[a as usize] && keep[b as usize])
@@ -553,8 +539,8 @@ impl Network {
     /// The objects bound together by some constraint, per object (local indices, sorted, no
     /// repetition): the adjacency Over-Rigid builds its candidate sets from.
     pub(crate) fn adjacency(&self) -> Vec<Vec<u32>> {
-        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); self.objects.len()];
-        for bound in &self.constraint_objects {
+        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); self.parts.objects.len()];
+        for bound in &self.parts.constraint_objects {
             for &a in bound {
                 for &b in bound {
                     if a != b {
