@@ -4,7 +4,8 @@
 //!
 //! - [`data_files`] and [`load`]: the example models of `data/`, in sorted path order;
 //! - [`rebuild`] and [`strip_unfixed_sketch`]: the same system rebuilt with
-//!   [`SystemBuilder`], with sketch positions removed, so that a witness must be generated.
+//!   [`SystemBuilder`], with sketch positions removed, so that a witness must be generated;
+//! - [`solver_rectangle`]: the rectangle with a redundant dimension the solver tests share.
 //!
 //! Only `gcs-model` is a dependency here; helpers that need the analysis live in
 //! `tests/common/mod.rs`.
@@ -207,4 +208,23 @@ pub fn random_bar_framework(
     }
     let coords = random_coords(n, Dim::Two, 1000, &mut rng);
     (framework("random", Dim::Two, &coords, &edges), edges)
+}
+
+/// The RON text of the solver's rectangle: `rect`, fixed at `p1`, drawn 60 × 40 and
+/// dimensioned 40 × 30 (`width`, `height`), with a redundant top width `width_top` of the value
+/// given: consistent at `40`, conflicting with `v_right`, `v_left` and `width` otherwise.
+pub fn solver_rectangle(width_top: &str) -> String {
+    format!(
+        r#"System(name: "rect", dim: 2, entities: [
+  Point(id: "p1", at: [10, 5]), Point(id: "p2", at: [70, 5]),
+  Point(id: "p3", at: [70, 45]), Point(id: "p4", at: [10, 45]),
+  Segment(id: "bottom", from: "p1", to: "p2"), Segment(id: "right", from: "p2", to: "p3"),
+  Segment(id: "top", from: "p3", to: "p4"), Segment(id: "left", from: "p4", to: "p1")],
+ constraints: [Fix(id: "fix_p1", a: "p1"),
+  Horizontal(id: "h_bottom", a: "bottom"), Horizontal(id: "h_top", a: "top"),
+  Vertical(id: "v_right", a: "right"), Vertical(id: "v_left", a: "left"),
+  Distance(id: "width", a: "p1", b: "p2", value: 40),
+  Distance(id: "height", a: "p2", b: "p3", value: 30),
+  Distance(id: "width_top", a: "p4", b: "p3", value: {width_top})])"#
+    )
 }

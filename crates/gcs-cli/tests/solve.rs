@@ -5,19 +5,8 @@
 mod common;
 
 use common::gcs;
+use gcs_suite::solver_rectangle;
 use serde_json::Value;
-
-const RECTANGLE: &str = r#"System(name: "rect", dim: 2, entities: [
-  Point(id: "p1", at: [10, 5]), Point(id: "p2", at: [70, 5]),
-  Point(id: "p3", at: [70, 45]), Point(id: "p4", at: [10, 45]),
-  Segment(id: "bottom", from: "p1", to: "p2"), Segment(id: "right", from: "p2", to: "p3"),
-  Segment(id: "top", from: "p3", to: "p4"), Segment(id: "left", from: "p4", to: "p1")],
- constraints: [Fix(id: "fix_p1", a: "p1"),
-  Horizontal(id: "h_bottom", a: "bottom"), Horizontal(id: "h_top", a: "top"),
-  Vertical(id: "v_right", a: "right"), Vertical(id: "v_left", a: "left"),
-  Distance(id: "width", a: "p1", b: "p2", value: 40),
-  Distance(id: "height", a: "p2", b: "p3", value: 30),
-  Distance(id: "width2", a: "p4", b: "p3", value: TOP)])"#;
 
 fn temp(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("gcs-solve-cli-{}", std::process::id()));
@@ -28,7 +17,7 @@ fn temp(name: &str) -> std::path::PathBuf {
 #[test]
 fn a_conflict_is_named_with_what_it_conflicts_with() {
     let file = temp("rect48.ron");
-    std::fs::write(&file, RECTANGLE.replace("TOP", "48")).unwrap();
+    std::fs::write(&file, solver_rectangle("48")).unwrap();
     let (code, out, err) = gcs(&["solve", "--format", "json", file.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let v: Value = serde_json::from_str(out.trim()).unwrap();
@@ -38,25 +27,25 @@ fn a_conflict_is_named_with_what_it_conflicts_with() {
     assert!(v["max_residual"].as_f64().unwrap() < 1e-9);
     assert!((v["moved"].as_f64().unwrap() - 20.0).abs() < 1e-6);
     let conflict = &v["conflicting"][0];
-    assert_eq!(conflict["constraint"], "width2");
+    assert_eq!(conflict["constraint"], "width_top");
     assert!((conflict["residual"].as_f64().unwrap() + 8.0).abs() < 1e-6);
     assert_eq!(conflict["spanning_group"], serde_json::json!(["v_right", "v_left", "width"]));
     let p3 = v["entities"].as_array().unwrap().iter().find(|e| e["id"] == "p3").unwrap();
     let at: Vec<f64> = p3["at"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     assert!((at[0] - 50.0).abs() < 1e-6 && (at[1] - 35.0).abs() < 1e-6, "{at:?}");
     let (_, text, _) = gcs(&["solve", file.to_str().unwrap()]);
-    assert!(text.contains("conflicting: width2 is off by -8"), "{text}");
+    assert!(text.contains("conflicting: width_top is off by -8"), "{text}");
 }
 
 #[test]
 fn the_solved_model_is_written_and_reads_back_satisfied() {
     let file = temp("rect40.ron");
-    std::fs::write(&file, RECTANGLE.replace("TOP", "40")).unwrap();
+    std::fs::write(&file, solver_rectangle("40")).unwrap();
     let dir = temp("out");
     let (code, out, err) = gcs(&["solve", "--out", dir.to_str().unwrap(), file.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("status: solved"), "{out}");
-    assert!(out.contains("redundant (consistent): width2"), "{out}");
+    assert!(out.contains("redundant (consistent): width_top"), "{out}");
     let solved = dir.join("rect.ron");
     let (code, json, err) = gcs(&["analyze", "--format", "json", solved.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");

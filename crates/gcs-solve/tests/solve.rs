@@ -16,20 +16,8 @@ fn run(system: &System) -> gcs_solve::Solution {
     solve(system, &analysis, &SolveOptions::default()).unwrap()
 }
 
-fn rectangle(top: &str) -> System {
-    model(&format!(
-        r#"System(name: "r", dim: 2, entities: [
-        Point(id: "p1", at: [10, 5]), Point(id: "p2", at: [70, 5]),
-        Point(id: "p3", at: [70, 45]), Point(id: "p4", at: [10, 45]),
-        Segment(id: "bottom", from: "p1", to: "p2"), Segment(id: "right", from: "p2", to: "p3"),
-        Segment(id: "top", from: "p3", to: "p4"), Segment(id: "left", from: "p4", to: "p1")],
-      constraints: [Fix(id: "fix_p1", a: "p1"),
-        Horizontal(id: "h_bottom", a: "bottom"), Horizontal(id: "h_top", a: "top"),
-        Vertical(id: "v_right", a: "right"), Vertical(id: "v_left", a: "left"),
-        Distance(id: "width", a: "p1", b: "p2", value: 40),
-        Distance(id: "height", a: "p2", b: "p3", value: 30),
-        Distance(id: "width_top", a: "p4", b: "p3", value: {top})])"#
-    ))
+fn rectangle(width_top: &str) -> System {
+    model(&gcs_suite::solver_rectangle(width_top))
 }
 
 fn point(system: &System, x: &[f64], id: &str) -> (f64, f64) {
