@@ -124,7 +124,7 @@ fn generated_models_cover_redundancy_and_absolute_constraints() {
     assert_eq!((verdicts[1].trivial_motions, verdicts[1].dof), (3, 0));
     assert_eq!((verdicts[2].trivial_motions, verdicts[2].dof), (6, 0));
     assert_eq!(verdicts[3].redundant.len(), 2, "two extra bars");
-    assert!(verdicts[3].redundant.iter().all(|r| !r.3.is_empty()));
+    assert!(verdicts[3].redundant.iter().all(|r| !r.spanning_group.is_empty()));
 }
 
 #[test]

@@ -154,7 +154,7 @@ fn the_modular_witness_of_the_zoo_is_generic_at_every_seed() {
     let summary = |a: &gcs_analysis::Analysis| {
         let v = Verdict::of(&s, a);
         let dependent: Vec<(String, usize)> =
-            v.redundant.iter().map(|r| (r.0.clone(), r.1)).collect();
+            v.redundant.iter().map(|r| (r.constraint.clone(), r.rows)).collect();
         (v.rank, v.dof, v.trivial_motions, dependent)
     };
     assert_eq!(

@@ -6,53 +6,42 @@
 use gcs_analysis::{Analysis, AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessOptions;
 use gcs_model::System;
+use gcs_report::{ArithmeticName, BackendName, Report, WitnessName};
 
-/// What the analysis decides, with ids instead of indices: what must not depend on the
-/// backend nor on the witness.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Verdict {
-    pub unknowns: usize,
-    pub equations: usize,
-    pub rank: usize,
-    pub dof_absolute: usize,
-    pub trivial_motions: usize,
-    pub dof: usize,
-    pub rigid: bool,
-    pub well_constrained: bool,
-    /// `(constraint, rows, doc, spanning group)` in file order.
-    pub redundant: Vec<(String, usize, usize, Vec<String>)>,
-    /// `(entities, constraints)` of every cluster, in report order.
-    pub clusters: Vec<(Vec<String>, Vec<String>)>,
-}
+/// What the analysis decides, with ids instead of indices: the model's report (format §2)
+/// without what may depend on the backend, the seed, the witness or the drawing, so that it must
+/// be the same whatever they are. Its fields are the report's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict(Report);
 
 impl Verdict {
     pub fn of(system: &System, a: &Analysis) -> Verdict {
-        let c = |c: &gcs_model::ConstraintIdx| system.constraint(*c).id.clone();
-        let e = |e: &gcs_model::EntityIdx| system.entity(*e).id.clone();
-        Verdict {
-            unknowns: a.unknowns,
-            equations: a.equations,
-            rank: a.rank,
-            dof_absolute: a.dof_absolute,
-            trivial_motions: a.trivial_motions,
-            dof: a.dof,
-            rigid: a.rigid(),
-            well_constrained: a.well_constrained(),
-            redundant: a
-                .redundant
-                .iter()
-                .map(|r| {
-                    (c(&r.constraint), r.rows, r.doc, r.spanning_group.iter().map(c).collect())
-                })
-                .collect(),
-            clusters: a
-                .clusters
-                .iter()
-                .map(|k| {
-                    (k.entities.iter().map(e).collect(), k.constraints.iter().map(c).collect())
-                })
-                .collect(),
-        }
+        let mut r = Report::new(system, "", a, None);
+        r.model.clear();
+        r.backend = BackendName::Exact;
+        r.witness = WitnessName::Sketch;
+        r.entities = 0;
+        r.constraints = 0;
+        r.decomposition = None;
+        r.decomposition_complete = None;
+        r.seed = 0;
+        r.tolerance = None;
+        r.proof = None;
+        r.internal_equations = 0;
+        r.float_qr_rank = None;
+        r.clusters_arithmetic = ArithmeticName::None;
+        r.sketch = None;
+        r.witness_error_bound = None;
+        r.uncertain = None;
+        Verdict(r)
+    }
+}
+
+impl std::ops::Deref for Verdict {
+    type Target = Report;
+
+    fn deref(&self) -> &Report {
+        &self.0
     }
 }
 
