@@ -429,6 +429,17 @@ pub(crate) fn place(
     }
 }
 
+/// The height in bits beyond which a failed rational run ends the rational placement (see
+/// [`place_in`]). Successful placements of the CAD samples stay below 256 bits but for a
+/// handful (up to 2,400 bits, reached by their first run, which the cap does not stop);
+/// failed runs of large sketches reached 2,000 bits at 4 s each.
+const HEIGHT_CAP: u64 = 1024;
+
+/// The largest height in bits of the rationals among `coords` (residues count as none).
+fn height_bits(coords: &[Q]) -> u64 {
+    coords.iter().filter_map(Num::rational).map(gcs_rank::Rat::height_bits).max().unwrap_or(0)
+}
+
 /// [`place`] in one system.
 fn place_in(
     system: &System,
@@ -551,6 +562,14 @@ fn place_in(
             }
             Err(f) => f,
         };
+        // Over ℚ, numbers that outgrew the cap stop the placement: their heights compound
+        // along the sketch's chains of determined constructions (each at least doubles them),
+        // which no other order or grouping undoes, and each further run costs as much; the
+        // modular witness, whose numbers have one size, takes over.
+        if !options.modular && height_bits(&p.coords) > HEIGHT_CAP {
+            failure.get_or_insert(f.public);
+            break;
+        }
         // The first run's failure is reported: where the plain construction stopped.
         let no_root = f.no_root;
         if options.modular && no_root && retries < epochs {

@@ -609,18 +609,17 @@ impl SystemBuilder {
         if !self.system.ids.contains_key(id)
             && let Some(curve) = id.strip_suffix(".center")
             && let Some(Item::Entity(c)) = self.system.ids.get(curve).copied()
+            && let Some(center) = self.system.entity(c).geometry.center()
         {
-            if let Some(center) = self.system.entity(c).geometry.center() {
-                let center = center.cloned();
-                self.push_owned_entity(id, Geometry::Point { at: center }, &[], Some(c))?;
-                self.push_constraint(
-                    ConstraintKind::Concentric,
-                    &format!("{id}@{curve}"),
-                    &[id, curve],
-                    None,
-                    Some(c),
-                )?;
-            }
+            let center = center.cloned();
+            self.push_owned_entity(id, Geometry::Point { at: center }, &[], Some(c))?;
+            self.push_constraint(
+                ConstraintKind::Concentric,
+                &format!("{id}@{curve}"),
+                &[id, curve],
+                None,
+                Some(c),
+            )?;
         }
         match self.system.ids.get(id) {
             Some(Item::Entity(e)) => Ok(*e),

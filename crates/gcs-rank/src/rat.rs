@@ -254,6 +254,18 @@ impl Rat {
         }
     }
 
+    /// The height in bits: the larger bit length of the numerator and the denominator in
+    /// lowest terms.
+    pub fn height_bits(&self) -> u64 {
+        match &self.0 {
+            &Repr::Small { num, den } => {
+                let bits = |v: u64| u64::from(u64::BITS - v.leading_zeros());
+                bits(num.unsigned_abs()).max(bits(den.unsigned_abs()))
+            }
+            Repr::Big(q) => q.numer().bits().max(q.denom().bits()),
+        }
+    }
+
     /// The numerator in lowest terms (its sign is the sign of the value).
     pub fn numer(&self) -> BigInt {
         match &self.0 {
@@ -806,6 +818,17 @@ mod tests {
 
     fn pow2(k: u32) -> BigInt {
         BigInt::one() << k
+    }
+
+    #[test]
+    fn height_bits_is_the_longer_part_in_lowest_terms() {
+        assert_eq!(Rat::ZERO.height_bits(), 1);
+        assert_eq!(r(-5, 3).height_bits(), 3);
+        assert_eq!(r(6, 16).height_bits(), 4, "3/8 in lowest terms: 8 has 4 bits");
+        assert_eq!(r(MIN, 1).height_bits(), 64);
+        let tall = Rat::from(big(&(pow2(200) + BigInt::one()), &pow2(100)));
+        assert_eq!(tall.height_bits(), 201);
+        assert_eq!(Rat::from(big(&BigInt::one(), &pow2(300))).height_bits(), 301);
     }
 
     /// `x` is stored small exactly when its parts fit, and its parts are in lowest terms.
