@@ -206,17 +206,20 @@ impl ConstraintKind {
     pub fn ron_fields(self) -> &'static [&'static str] {
         use ConstraintKind as K;
         match self {
-            K::Radius => &["id", "a", "value"],
+            K::Distance | K::Angle | K::DistanceX | K::DistanceY => &["id", "a", "b", "value"],
             K::TangentAt => &["id", "a", "b", "at"],
+            K::Radius => &["id", "a", "value"],
+            K::Horizontal | K::Vertical | K::Fix => &["id", "a"],
             K::Midpoint => &["id", "point", "segment"],
             K::Symmetric => &["id", "a", "b", "axis"],
-            // The others follow their role: a dimension between two entities, an absolute
-            // constraint on one, a relation between two.
-            _ => match self.role() {
-                Role::Metric | Role::AbsoluteMetric => &["id", "a", "b", "value"],
-                Role::Absolute => &["id", "a"],
-                Role::Relation => &["id", "a", "b"],
-            },
+            K::Coincident
+            | K::Parallel
+            | K::Perpendicular
+            | K::Incident
+            | K::Tangent
+            | K::Concentric
+            | K::EqualLength
+            | K::EqualRadius => &["id", "a", "b"],
         }
     }
 
