@@ -234,21 +234,7 @@ impl Field for Num {
         Ok(Num::R(q.clone()))
     }
 
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-
-    fn neg(&self) -> Self {
-        -self
-    }
+    gcs_rank::arithmetic_by_operators!();
 
     fn inv(&self) -> Option<Self> {
         match self {

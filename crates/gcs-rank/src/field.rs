@@ -64,7 +64,9 @@ pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
     fn magnitude(&self) -> f64;
 }
 
-/// `add`, `sub`, `mul` and `neg` of a type whose references have the standard operators.
+/// `add`, `sub`, `mul` and `neg` of a [`Field`] whose references have the standard operators,
+/// inside its `impl Field` block (also for fields of other crates: the placement's numbers).
+#[macro_export]
 macro_rules! arithmetic_by_operators {
     () => {
         fn add(&self, rhs: &Self) -> Self {
