@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use gcs_analysis::{AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessOptions;
 use gcs_report::{Report, Structural};
+use gcs_solve::{Solution, SolveOptions};
 
 use crate::Format;
 use crate::batch::{self, Out};
@@ -44,6 +45,21 @@ pub(crate) fn with_import_text(text: &str, import: Option<&gcs_report::ImportRep
     }
 }
 
+/// The model solved at its values when it has redundant constraints, to tell those that agree
+/// from those that conflict (`None` without redundancy, or when it is too large for the
+/// solver: the report then says only "redundant").
+fn values(system: &gcs_model::System, analysis: &gcs_analysis::Analysis) -> Option<Solution> {
+    if analysis.redundant.iter().all(|r| r.rows < r.doc) {
+        return None;
+    }
+    let options = SolveOptions { max_unknowns: ANALYZE_SOLVE_LIMIT, ..SolveOptions::default() };
+    gcs_solve::solve(system, analysis, &options).ok()
+}
+
+/// The most unknowns `gcs analyze` solves for to check redundant constraints against the
+/// values (the solver's steps are dense: `gcs solve` takes more).
+const ANALYZE_SOLVE_LIMIT: usize = 1_000;
+
 pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     let mut out = Out::new();
     let mut failed = 0;
@@ -68,23 +84,32 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
             } else {
                 None
             };
-            Ok((system, import, analysis, structural))
+            let solution = values(&system, &analysis);
+            Ok((system, import, analysis, structural, solution))
         });
         match result {
-            Ok((system, import, analysis, s)) => {
+            Ok((system, import, analysis, s, solution)) => {
                 if settings.dot.is_some()
                     && let Some(trees) = &analysis.decomposition
                 {
                     dot.push_str(&gcs_report::clusters::dot(&system, trees));
                 }
                 match settings.format {
-                    Format::Json => out.line(
-                        &Report::new(&system, &file, &analysis, s.as_ref())
-                            .with_import(import)
-                            .to_json(),
-                    ),
+                    Format::Json => {
+                        let mut report = Report::new(&system, &file, &analysis, s.as_ref());
+                        if let Some(sol) = &solution {
+                            report = report.with_solution(&system, sol);
+                        }
+                        out.line(&report.with_import(import).to_json())
+                    }
                     Format::Text => {
-                        let text = gcs_report::text(&system, &file, &analysis, s.as_ref());
+                        let text = gcs_report::text_with_solution(
+                            &system,
+                            &file,
+                            &analysis,
+                            s.as_ref(),
+                            solution.as_ref(),
+                        );
                         out.line(&with_import_text(&text, import.as_ref()))
                     }
                 }

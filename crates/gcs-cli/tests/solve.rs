@@ -64,3 +64,39 @@ fn every_example_solves() {
         assert_eq!(v["status"], "solved", "{v}");
     }
 }
+
+/// `gcs analyze` tells a redundant dimension that agrees with the others from one that
+/// conflicts, at the user's values (format §4, `redundant[].conflicting`): the same rectangle
+/// with its top at 40 and at 48, and the kite of the witness paper, whose 3.1623 for √10
+/// agrees within its written precision.
+#[test]
+fn analyze_tells_consistent_from_conflicting() {
+    let redundant = |file: &std::path::Path| -> Value {
+        let (code, out, err) = gcs(&["analyze", "--format", "json", file.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+        let v: Value = serde_json::from_str(out.trim()).unwrap();
+        v["redundant"][0].clone()
+    };
+    let conflicting = temp("analyze48.ron");
+    std::fs::write(&conflicting, solver_rectangle("48")).unwrap();
+    let r = redundant(&conflicting);
+    assert_eq!(r["constraint"], "width_top");
+    assert_eq!(r["conflicting"], true, "{r}");
+    assert!((r["residual"].as_f64().unwrap() + 8.0).abs() < 1e-6, "{r}");
+    assert_eq!(r["spanning_group"], serde_json::json!(["v_right", "v_left", "width"]));
+    let (_, text, _) = gcs(&["analyze", conflicting.to_str().unwrap()]);
+    assert!(text.contains("1 of them conflicting at these values"), "{text}");
+    assert!(text.contains("conflicting: width_top (Distance p4–p3) is off by -8"), "{text}");
+
+    let consistent = temp("analyze40.ron");
+    std::fs::write(&consistent, solver_rectangle("40")).unwrap();
+    let r = redundant(&consistent);
+    assert_eq!(r["conflicting"], false, "{r}");
+    assert!(r["residual"].as_f64().unwrap().abs() <= r["allowance"].as_f64().unwrap(), "{r}");
+    let (_, text, _) = gcs(&["analyze", consistent.to_str().unwrap()]);
+    assert!(text.contains("redundant (consistent): width_top"), "{text}");
+
+    let kite = common::root().join("data/paper/kite.ron");
+    let r = redundant(&kite);
+    assert_eq!((r["constraint"].as_str(), r["conflicting"].as_bool()), (Some("c6"), Some(false)));
+}

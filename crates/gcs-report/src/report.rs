@@ -6,6 +6,7 @@ use gcs_analysis::{Analysis, Arithmetic, Backend, Position, Redundancy, SketchAn
 use gcs_jacobian::WitnessSource;
 use gcs_model::{ConstraintIdx, System};
 use gcs_rank::Proof;
+use gcs_solve::{Solution, Status as SolveStatus};
 use num_traits::ToPrimitive;
 use serde::{Deserialize, Serialize};
 
@@ -132,6 +133,21 @@ pub struct RedundantReport {
     pub doc: usize,
     /// The earlier constraints it is redundant with.
     pub spanning_group: Vec<String>,
+    /// Whether it contradicts its spanning group at the user's values: measured at the
+    /// solution of the model without its redundant constraints (`gcs solve`'s). Absent when
+    /// the model was not solved (too large, or the solver did not converge) and for a
+    /// constraint only some of whose equations are dependent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub conflicting: Option<bool>,
+    /// With `conflicting`: its residual at that solution (for a dimension, the measure minus
+    /// the value, in model units or degrees; for a parameter-free constraint, its largest
+    /// polynomial residual).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual: Option<f64>,
+    /// With `conflicting`: how large the residual may be and the constraint still agree (the
+    /// written precision of the values in its dependency, plus the solver's tolerance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub allowance: Option<f64>,
 }
 
 /// One model's report (format §2–§4), in the order of its fields in the JSON line. Optional
@@ -297,6 +313,9 @@ fn redundant_report(system: &System, r: &Redundancy) -> RedundantReport {
         rows: r.rows,
         doc: r.doc,
         spanning_group: r.spanning_group.iter().map(|c| id(*c)).collect(),
+        conflicting: None,
+        residual: None,
+        allowance: None,
     }
 }
 
@@ -353,6 +372,27 @@ impl Report {
         self
     }
 
+    /// The same report with each fully redundant constraint told consistent or conflicting
+    /// at the user's values, as measured at `solution` (of the same model and analysis). A
+    /// solution that did not converge tells nothing: the report is returned unchanged.
+    pub fn with_solution(mut self, system: &System, solution: &Solution) -> Report {
+        if solution.status == SolveStatus::Failed {
+            return self;
+        }
+        for r in &mut self.redundant {
+            let c = solution
+                .redundant
+                .iter()
+                .find(|k| system.constraint(k.constraint).id == r.constraint);
+            if let Some(c) = c {
+                r.conflicting = Some(c.conflicting);
+                r.residual = Some(c.residual);
+                r.allowance = Some(c.allowance);
+            }
+        }
+        self
+    }
+
     /// The report as one line of JSON (JSON Lines).
     pub fn to_json(&self) -> String {
         serde_json::to_string(self).unwrap_or_default()
@@ -369,6 +409,19 @@ fn describe_constraint(system: &System, c: gcs_model::ConstraintIdx) -> String {
 /// redundant constraint with what to delete, what decided it, the rigid parts, and the
 /// optional sections (format §4, "Command line").
 pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -> String {
+    text_with_solution(system, file, a, s, None)
+}
+
+/// [`text`], with each fully redundant constraint told consistent or conflicting at the
+/// user's values as measured at `solution` (see [`Report::with_solution`]).
+pub fn text_with_solution(
+    system: &System,
+    file: &str,
+    a: &Analysis,
+    s: Option<&Structural>,
+    solution: Option<&Solution>,
+) -> String {
+    let solution = solution.filter(|sol| sol.status != SolveStatus::Failed);
     let mut out = String::new();
     let push = |out: &mut String, s: String| {
         out.push_str(&s);
@@ -401,7 +454,13 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
             a.redundant.len()
         ),
     };
-    push(&mut out, format!("  verdict: {verdict}"));
+    let conflicts =
+        solution.map_or(0, |sol| sol.redundant.iter().filter(|k| k.conflicting).count());
+    let values = match conflicts {
+        0 => String::new(),
+        k => format!("; {k} of them conflicting at these values"),
+    };
+    push(&mut out, format!("  verdict: {verdict}{values}"));
     let placement = match a.trivial_motions {
         0 => "it is fixed in place".to_owned(),
         t if t == system.dim().displacements() => {
@@ -429,10 +488,18 @@ pub fn text(system: &System, file: &str, a: &Analysis, s: Option<&Structural>) -
         } else {
             format!("remove it or one of: {}", others.join(", "))
         };
-        push(
-            &mut out,
-            format!("  redundant: {}{partial}: {fix}", describe_constraint(system, r.constraint)),
-        );
+        let what = describe_constraint(system, r.constraint);
+        let checked =
+            solution.and_then(|sol| sol.redundant.iter().find(|k| k.constraint == r.constraint));
+        let line = match checked {
+            Some(k) if k.conflicting => format!(
+                "  conflicting: {what}{partial} {}: change one value or delete one of them",
+                crate::solve::off_by(k.residual, k.allowance, &others)
+            ),
+            Some(_) => format!("  redundant (consistent): {what}{partial}: {fix}"),
+            None => format!("  redundant: {what}{partial}: {fix}"),
+        };
+        push(&mut out, line);
     }
     if let Some(sketch) = &a.sketch {
         for line in drawing_text(system, &verdict, sketch) {

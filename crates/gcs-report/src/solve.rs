@@ -209,11 +209,9 @@ impl SolveReport {
         for r in &self.redundant {
             if r.conflicting {
                 out.push_str(&format!(
-                    "  conflicting: {} is off by {:.6} (written precision allows {:.1e}) given {}: change one value or delete one of them\n",
+                    "  conflicting: {} {}: change one value or delete one of them\n",
                     r.constraint,
-                    r.residual,
-                    r.allowance,
-                    r.spanning_group.join(", ")
+                    off_by(r.residual, r.allowance, &r.spanning_group)
                 ));
             } else {
                 out.push_str(&format!(
@@ -226,4 +224,13 @@ impl SolveReport {
         out.truncate(out.trim_end().len());
         out
     }
+}
+
+/// How far a conflicting constraint is off, against what its written precision allows, and
+/// what it conflicts with: the words `gcs solve` and `gcs analyze` share.
+pub(crate) fn off_by(residual: f64, allowance: f64, group: &[String]) -> String {
+    format!(
+        "is off by {residual:.6} (written precision allows {allowance:.1e}) given {}",
+        group.join(", ")
+    )
 }
