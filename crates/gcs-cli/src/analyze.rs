@@ -46,10 +46,10 @@ pub(crate) fn with_import_text(text: &str, import: Option<&gcs_report::ImportRep
 }
 
 /// The model solved at its values when it has redundant constraints, to tell those that agree
-/// from those that conflict (`None` without redundancy, or when it is too large for the
-/// solver: the report then says only "redundant").
+/// from those that conflict (`None` without redundancy, without a complete drawing to start
+/// from, or when it is too large for the solver: the report then says only "redundant").
 fn values(system: &gcs_model::System, analysis: &gcs_analysis::Analysis) -> Option<Solution> {
-    if analysis.redundant.iter().all(|r| r.rows < r.doc) {
+    if analysis.sketch.is_none() || analysis.redundant.iter().all(|r| r.rows < r.doc) {
         return None;
     }
     let options = SolveOptions { max_unknowns: ANALYZE_SOLVE_LIMIT, ..SolveOptions::default() };
