@@ -29,6 +29,7 @@
 
 mod analysis;
 mod error;
+pub mod global;
 mod sketch;
 
 pub use analysis::{
@@ -37,4 +38,5 @@ pub use analysis::{
 };
 pub use error::AnalysisError;
 pub use gcs_decompose::{Cluster, ClusterMethod, DecompositionNode, RemovalOrder, Statistics};
+pub use global::{GlobalMethod, GlobalRigidity};
 pub use sketch::{Configuration, Position, Residual, SketchAnalysis};
