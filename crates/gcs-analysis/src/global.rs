@@ -190,11 +190,19 @@ struct Draw {
     stress_rank: usize,
 }
 
+/// A graph in dimension `d`: `n` vertices, bars between them.
+#[derive(Clone, Copy)]
+struct Graph<'a> {
+    n: usize,
+    d: usize,
+    bars: &'a [(usize, usize)],
+}
+
 /// The rows of `Rᵀ` (one per vertex coordinate, columns the bars) at `x` (`x[v]` the
 /// coordinates of vertex `v`).
-fn transposed_rows<F: Field>(f: &DistanceFramework, x: &[Vec<F>]) -> Vec<SparseRow<F>> {
-    let d = f.dim;
-    let mut rows: Vec<Vec<(usize, F)>> = vec![Vec::new(); d * f.vertices.len()];
+fn transposed_rows<F: Field>(f: Graph<'_>, x: &[Vec<F>]) -> Vec<SparseRow<F>> {
+    let d = f.d;
+    let mut rows: Vec<Vec<(usize, F)>> = vec![Vec::new(); d * f.n];
     for (e, &(u, v)) in f.bars.iter().enumerate() {
         for k in 0..d {
             let diff = x[u][k].sub(&x[v][k]);
@@ -206,8 +214,8 @@ fn transposed_rows<F: Field>(f: &DistanceFramework, x: &[Vec<F>]) -> Vec<SparseR
 }
 
 /// The rows of the stress matrix of `omega`.
-fn stress_rows<F: Field>(f: &DistanceFramework, omega: &[F]) -> Vec<SparseRow<F>> {
-    let mut rows: Vec<Vec<(usize, F)>> = vec![Vec::new(); f.vertices.len()];
+fn stress_rows<F: Field>(f: Graph<'_>, omega: &[F]) -> Vec<SparseRow<F>> {
+    let mut rows: Vec<Vec<(usize, F)>> = vec![Vec::new(); f.n];
     for (&(u, v), w) in f.bars.iter().zip(omega) {
         rows[u].push((u, w.clone()));
         rows[v].push((v, w.clone()));
@@ -218,8 +226,8 @@ fn stress_rows<F: Field>(f: &DistanceFramework, omega: &[F]) -> Vec<SparseRow<F>
 }
 
 /// One draw modulo `p` at `x`.
-fn draw_modp(f: &DistanceFramework, x: &[Vec<ModP>], rng: &mut SplitMix64) -> Draw {
-    let (n, d, m) = (f.vertices.len(), f.dim, f.bars.len());
+fn draw_modp(f: Graph<'_>, x: &[Vec<ModP>], rng: &mut SplitMix64) -> Draw {
+    let (n, d, m) = (f.n, f.d, f.bars.len());
     let mut random = || ModP::new(rng.below(ModP::PRIME));
     let (rank, omega) = random_kernel_vector(m, transposed_rows(f, x), &mut random);
     if rank < rigid_rank(n, d) || target_rank(n, d) == 0 {
@@ -230,8 +238,8 @@ fn draw_modp(f: &DistanceFramework, x: &[Vec<ModP>], rng: &mut SplitMix64) -> Dr
 }
 
 /// One draw in `f64` at `x`: ranks by elimination with the relative `tolerance`.
-fn draw_float(f: &DistanceFramework, x: &[Vec<f64>], tolerance: f64, rng: &mut SplitMix64) -> Draw {
-    let (n, d, m) = (f.vertices.len(), f.dim, f.bars.len());
+fn draw_float(f: Graph<'_>, x: &[Vec<f64>], tolerance: f64, rng: &mut SplitMix64) -> Draw {
+    let (n, d, m) = (f.n, f.d, f.bars.len());
     let options = EchelonOptions { track_combinations: false, tolerance: Some(tolerance) };
     let mut e = Echelon::<f64>::new(m, options.clone());
     for row in transposed_rows(f, x) {
@@ -275,36 +283,13 @@ pub fn stress_test(
     backend: Backend,
     seed: u64,
 ) -> GlobalRigidity {
-    let (n, d) = (f.vertices.len(), f.dim);
+    let g = Graph { n: f.vertices.len(), d: f.dim, bars: &f.bars };
     let mut rng = SplitMix64::new(seed ^ 0x5354_5245_5353_u64);
-    let target = target_rank(n, d);
-    let answer = |draw: Draw, arithmetic: Arithmetic, random: bool| {
-        let rigid = draw.rank == rigid_rank(n, d);
-        let yes = rigid && draw.stress_rank == target;
-        let error_bound = (!yes && matches!(arithmetic, Arithmetic::ModP)).then(|| {
-            let r = rigid_rank(n, d) as f64;
-            (target as f64 * (r + 1.0) + r) / ModP::PRIME as f64
-        });
-        GlobalRigidity {
-            globally_rigid: yes,
-            method: GlobalMethod::StressMatrix,
-            arithmetic,
-            points: n,
-            bars: f.bars.len(),
-            rigid,
-            stress_rank: draw.stress_rank,
-            target_rank: target,
-            random_configuration: random,
-            error_bound,
-        }
-    };
     if let Backend::Float { tolerance } = backend {
-        let x = vertex_coords::<f64>(f, layout, witness).unwrap_or_else(|| vec![vec![0.0; d]; n]);
-        return answer(
-            draw_float(f, &x, tolerance, &mut rng),
-            Arithmetic::Float { tolerance },
-            false,
-        );
+        let x =
+            vertex_coords::<f64>(f, layout, witness).unwrap_or_else(|| vec![vec![0.0; g.d]; g.n]);
+        let draw = draw_float(g, &x, tolerance, &mut rng);
+        return answer(g, draw, Arithmetic::Float { tolerance }, false);
     }
     // A modular witness is a configuration modulo p already; a rational one is mapped there.
     let at_witness = match witness.source {
@@ -312,15 +297,65 @@ pub fn stress_test(
         _ => vertex_coords::<ModP>(f, layout, witness),
     };
     if let Some(x) = at_witness {
-        let first = answer(draw_modp(f, &x, &mut rng), Arithmetic::ModP, false);
+        let first = answer(g, draw_modp(g, &x, &mut rng), Arithmetic::ModP, false);
         if first.globally_rigid {
             return first;
         }
     }
-    // The second draw: a uniformly random configuration and stress modulo p.
+    at_random(g, &mut rng)
+}
+
+/// The stress-matrix test of a bare graph (vertices `0..n`, `edges` between them) in
+/// dimension `dim`, at a uniformly random configuration modulo `p` with a random stress
+/// (seeded by `seed`): a *yes* is proven, a *no* carries [`GlobalRigidity::error_bound`].
+///
+/// # Example
+/// ```
+/// // K4 is globally rigid in the plane; K4 minus an edge is not even rigid.
+/// let k4 = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+/// assert!(gcs_analysis::global::graph_globally_rigid(4, 2, &k4, 1).globally_rigid);
+/// assert!(!gcs_analysis::global::graph_globally_rigid(4, 2, &k4[1..], 1).rigid);
+/// ```
+pub fn graph_globally_rigid(
+    n: usize,
+    dim: usize,
+    edges: &[(usize, usize)],
+    seed: u64,
+) -> GlobalRigidity {
+    let mut rng = SplitMix64::new(seed ^ 0x5354_5245_5353_u64);
+    at_random(Graph { n, d: dim, bars: edges }, &mut rng)
+}
+
+/// The second draw: a uniformly random configuration and stress modulo p.
+fn at_random(g: Graph<'_>, rng: &mut SplitMix64) -> GlobalRigidity {
     let x: Vec<Vec<ModP>> =
-        (0..n).map(|_| (0..d).map(|_| ModP::new(rng.below(ModP::PRIME))).collect()).collect();
-    answer(draw_modp(f, &x, &mut rng), Arithmetic::ModP, true)
+        (0..g.n).map(|_| (0..g.d).map(|_| ModP::new(rng.below(ModP::PRIME))).collect()).collect();
+    let draw = draw_modp(g, &x, rng);
+    answer(g, draw, Arithmetic::ModP, true)
+}
+
+/// The answer of one draw.
+fn answer(g: Graph<'_>, draw: Draw, arithmetic: Arithmetic, random: bool) -> GlobalRigidity {
+    let (n, d) = (g.n, g.d);
+    let target = target_rank(n, d);
+    let rigid = draw.rank == rigid_rank(n, d);
+    let yes = rigid && draw.stress_rank == target;
+    let error_bound = (!yes && matches!(arithmetic, Arithmetic::ModP)).then(|| {
+        let r = rigid_rank(n, d) as f64;
+        (target as f64 * (r + 1.0) + r) / ModP::PRIME as f64
+    });
+    GlobalRigidity {
+        globally_rigid: yes,
+        method: GlobalMethod::StressMatrix,
+        arithmetic,
+        points: n,
+        bars: g.bars.len(),
+        rigid,
+        stress_rank: draw.stress_rank,
+        target_rank: target,
+        random_configuration: random,
+        error_bound,
+    }
 }
 
 /// The test of the whole system, when it is a distance framework.
