@@ -69,8 +69,10 @@ fn model(name: &str, dim: Dim, edges: &[(usize, usize)], seed: u64) -> System {
     framework(name, dim, &coords, edges)
 }
 
-fn cases() -> Vec<(&'static str, Dim, Vec<(usize, usize)>, bool, bool)> {
-    // (name, dimension, edges, rigid, globally rigid)
+/// (name, dimension, edges, rigid, globally rigid)
+type Case = (&'static str, Dim, Vec<(usize, usize)>, bool, bool);
+
+fn cases() -> Vec<Case> {
     vec![
         ("K4", Dim::Two, complete(4), true, true),
         ("K3,3", Dim::Two, bipartite(3, 3), true, false),
