@@ -311,10 +311,14 @@ pub fn stress_test(
 ///
 /// # Example
 /// ```
-/// // K4 is globally rigid in the plane; K4 minus an edge is not even rigid.
+/// use gcs_analysis::global::graph_globally_rigid;
+/// // K4 is globally rigid in the plane; K4 minus an edge is rigid but can flip; a 4-cycle is
+/// // not even rigid.
 /// let k4 = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
-/// assert!(gcs_analysis::global::graph_globally_rigid(4, 2, &k4, 1).globally_rigid);
-/// assert!(!gcs_analysis::global::graph_globally_rigid(4, 2, &k4[1..], 1).rigid);
+/// assert!(graph_globally_rigid(4, 2, &k4, 1).globally_rigid);
+/// let minus = graph_globally_rigid(4, 2, &k4[1..], 1);
+/// assert!(minus.rigid && !minus.globally_rigid);
+/// assert!(!graph_globally_rigid(4, 2, &[(0, 1), (1, 2), (2, 3), (0, 3)], 1).rigid);
 /// ```
 pub fn graph_globally_rigid(
     n: usize,
