@@ -18,6 +18,7 @@ use gcs_decompose::{
 };
 
 use crate::error::AnalysisError;
+use crate::global::{self, GlobalRigidity};
 use crate::sketch::SketchAnalysis;
 
 /// The arithmetic a part of the analysis was decided in.
@@ -125,6 +126,9 @@ pub struct AnalysisOptions {
     /// Whether to analyse the drawing itself (its rank, singular position, residuals):
     /// [`Analysis::sketch`]. On by default.
     pub sketch: bool,
+    /// Whether to decide global rigidity (the stress-matrix test) of the system and of each
+    /// cluster that is a distance framework: [`Analysis::global_rigidity`]. On by default.
+    pub global_rigidity: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -138,6 +142,7 @@ impl Default for AnalysisOptions {
             cluster_method: ClusterMethod::default(),
             decomposition_budget: 20_000,
             sketch: true,
+            global_rigidity: true,
         }
     }
 }
@@ -206,6 +211,13 @@ pub struct Analysis {
     /// For the float backend, the rank by faer's column-pivoted QR (when the matrix is small
     /// enough to be made dense), as a cross-check of the incremental elimination.
     pub float_qr_rank: Option<usize>,
+    /// Whether the dimensions determine the shape (global rigidity, by the stress-matrix test):
+    /// `None` when the system is not a distance framework ([`crate::global`]) or
+    /// [`AnalysisOptions::global_rigidity`] is off.
+    pub global_rigidity: Option<GlobalRigidity>,
+    /// The same for each cluster, in the order of `clusters`: `None` for a cluster that is not
+    /// a distance framework (its own points and distances).
+    pub cluster_global_rigidity: Vec<Option<GlobalRigidity>>,
 }
 
 impl Analysis {
@@ -684,6 +696,15 @@ pub fn analyze_at(
         Some((d, s)) => (Some(d), Some(s)),
         None => (None, None),
     };
+    let seed = options.witness.seed;
+    let (global_rigidity, cluster_global_rigidity) = if options.global_rigidity {
+        let whole = global::model(system, layout, &witness, backend, seed);
+        let each =
+            global::clusters(system, layout, &witness, backend, seed, &clusters, whole.as_ref());
+        (whole, each)
+    } else {
+        (None, vec![None; clusters.len()])
+    };
     let unknowns = layout.ncols();
     let dof_absolute = unknowns - outcome.rank;
     Ok(Analysis {
@@ -707,6 +728,8 @@ pub fn analyze_at(
         float_qr_rank: outcome.float_qr_rank,
         sketch,
         uncertain,
+        global_rigidity,
+        cluster_global_rigidity,
     })
 }
 

@@ -6,7 +6,8 @@
 //! counting the placement (`dof_absolute`), the trivial motions the constraints admit, the
 //! internal degrees of freedom, every redundant constraint with its spanning group — the
 //! earlier constraints it is redundant with (its fundamental circuit) — and the clusters and
-//! W-decomposition (`gcs-decompose`).
+//! W-decomposition (`gcs-decompose`); for distance frameworks, global rigidity by the
+//! stress-matrix test ([`global`]).
 //!
 //! # Example: the kite (witness paper, fig. 4)
 //! ```
@@ -29,6 +30,7 @@
 
 mod analysis;
 mod error;
+pub mod global;
 mod sketch;
 
 pub use analysis::{
@@ -37,4 +39,5 @@ pub use analysis::{
 };
 pub use error::AnalysisError;
 pub use gcs_decompose::{Cluster, ClusterMethod, DecompositionNode, RemovalOrder, Statistics};
+pub use global::{GlobalMethod, GlobalRigidity};
 pub use sketch::{Configuration, Position, Residual, SketchAnalysis};

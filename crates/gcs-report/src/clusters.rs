@@ -1,7 +1,7 @@
 //! Clusters and W-decompositions in reports: as data (format §2 `clusters`, §3
 //! `decomposition`), as text trees, and as a Graphviz DOT graph.
 
-use gcs_analysis::{Cluster, DecompositionNode};
+use gcs_analysis::{Cluster, DecompositionNode, GlobalRigidity};
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use serde::{Deserialize, Serialize};
 
@@ -12,6 +12,10 @@ pub struct ClusterReport {
     pub entities: Vec<String>,
     /// The constraints among them, in file order.
     pub constraints: Vec<String>,
+    /// Whether its own points and distances determine its shape (global rigidity, the
+    /// stress-matrix test); absent for a cluster that is not a distance framework.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub globally_rigid: Option<bool>,
 }
 
 /// A node of a W-decomposition (format §3).
@@ -33,13 +37,39 @@ fn constraint_ids(system: &System, cs: &[ConstraintIdx]) -> Vec<String> {
     cs.iter().map(|c| system.constraint(*c).id.clone()).collect()
 }
 
-/// The clusters as report data.
-pub fn clusters_report(system: &System, clusters: &[Cluster]) -> Vec<ClusterReport> {
+/// The clusters as report data, each with its global rigidity (`global`, in the same order;
+/// missing entries count as not covered).
+pub fn clusters_report(
+    system: &System,
+    clusters: &[Cluster],
+    global: &[Option<GlobalRigidity>],
+) -> Vec<ClusterReport> {
     clusters
         .iter()
-        .map(|c| ClusterReport {
+        .enumerate()
+        .map(|(k, c)| ClusterReport {
             entities: entity_ids(system, &c.entities),
             constraints: constraint_ids(system, &c.constraints),
+            globally_rigid: global.get(k).and_then(|g| g.as_ref().map(|g| g.globally_rigid)),
+        })
+        .collect()
+}
+
+/// The clusters that can flip (not globally rigid, of more than one entity) as text lines.
+pub fn flips_text(
+    system: &System,
+    clusters: &[Cluster],
+    global: &[Option<GlobalRigidity>],
+) -> Vec<String> {
+    clusters
+        .iter()
+        .zip(global)
+        .filter(|(c, g)| c.entities.len() > 1 && g.as_ref().is_some_and(|g| !g.globally_rigid))
+        .map(|(c, _)| {
+            format!(
+                "  can flip (its dimensions admit other shapes): {{{}}}",
+                short(system, &c.entities)
+            )
         })
         .collect()
 }

@@ -41,8 +41,8 @@ pub use check::CheckReport;
 pub use error::ReportError;
 pub use import::{ImportReport, SkippedReport};
 pub use report::{
-    ArithmeticName, BackendName, ProofName, RedundantReport, Report, SCHEMA, WitnessName,
-    failure_json, text, text_with_solution,
+    ArithmeticName, BackendName, GlobalRigidityReport, ProofName, RedundantReport, Report, SCHEMA,
+    WitnessName, failure_json, text, text_with_solution,
 };
 pub use solve::{CheckedReport, SolveReport};
 pub use structural::{

@@ -2,7 +2,9 @@
 //! data — [`Report`], serialisable both ways, with typed enums — and as text for people
 //! ([`text`]).
 
-use gcs_analysis::{Analysis, Arithmetic, Backend, Position, Redundancy, SketchAnalysis};
+use gcs_analysis::{
+    Analysis, Arithmetic, Backend, GlobalRigidity, Position, Redundancy, SketchAnalysis,
+};
 use gcs_jacobian::WitnessSource;
 use gcs_model::{ConstraintIdx, System};
 use gcs_rank::Proof;
@@ -186,6 +188,16 @@ pub struct Report {
     pub rigid: bool,
     /// Rigid without redundancy.
     pub well_constrained: bool,
+    /// Whether the dimensions determine the shape up to moving and mirroring the whole (global
+    /// rigidity); absent for a model that is not a 2D or 3D distance framework.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub globally_rigid: Option<bool>,
+    /// The test that decided `globally_rigid`: `stress matrix` (or `Jackson–Jordán`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<String>,
+    /// How `globally_rigid` was decided, in detail.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub global_rigidity: Option<GlobalRigidityReport>,
     /// Redundant constraints in file order.
     pub redundant: Vec<RedundantReport>,
     /// The maximal rigid subsystems.
@@ -229,6 +241,43 @@ pub struct Report {
     /// import section (flattened into the line).
     #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
     pub import: Option<crate::ImportReport>,
+}
+
+/// The details of the global rigidity test (`global_rigidity`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GlobalRigidityReport {
+    /// `modp` (a yes proven) or `float` (approximate).
+    pub arithmetic: ArithmeticName,
+    /// Vertices of the framework (coincident points merged).
+    pub points: usize,
+    /// Its distances.
+    pub bars: usize,
+    /// Whether the framework is rigid.
+    pub rigid: bool,
+    /// The rank of the random stress matrix.
+    pub stress_rank: usize,
+    /// The rank that proves global rigidity: `n − d − 1`.
+    pub target_rank: usize,
+    /// `witness` or `random`: the configuration the answer was decided at.
+    pub configuration: String,
+    /// For a no modulo p: the probability bound that it is wrong (Schwartz–Zippel).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error_bound: Option<f64>,
+}
+
+impl From<&GlobalRigidity> for GlobalRigidityReport {
+    fn from(g: &GlobalRigidity) -> Self {
+        GlobalRigidityReport {
+            arithmetic: g.arithmetic.into(),
+            points: g.points,
+            bars: g.bars,
+            rigid: g.rigid,
+            stress_rank: g.stress_rank,
+            target_rank: g.target_rank,
+            configuration: if g.random_configuration { "random" } else { "witness" }.to_owned(),
+            error_bound: g.error_bound,
+        }
+    }
 }
 
 /// A constraint far from what its drawing shows (`sketch.largest_residual`).
@@ -340,7 +389,10 @@ impl Report {
             rigid: a.rigid(),
             well_constrained: a.well_constrained(),
             redundant: a.redundant.iter().map(|r| redundant_report(system, r)).collect(),
-            clusters: clusters::clusters_report(system, &a.clusters),
+            globally_rigid: a.global_rigidity.as_ref().map(|g| g.globally_rigid),
+            method: a.global_rigidity.as_ref().map(|g| g.method.name().to_owned()),
+            global_rigidity: a.global_rigidity.as_ref().map(GlobalRigidityReport::from),
+            clusters: clusters::clusters_report(system, &a.clusters, &a.cluster_global_rigidity),
             decomposition: a
                 .decomposition
                 .as_ref()
@@ -576,6 +628,9 @@ pub fn text_with_solution(
     } else {
         push(&mut out, "  rigid: the whole system is one rigid body".to_owned());
     }
+    for line in global_text(system, a) {
+        push(&mut out, line);
+    }
     if let Some(trees) = &a.decomposition {
         let complete = a.decomposition_statistics.is_none_or(|s| s.complete);
         push(
@@ -597,6 +652,39 @@ pub fn text_with_solution(
         push(&mut out, structural::text(system, a, s));
     }
     out.pop();
+    out
+}
+
+/// What the text report says of global rigidity, in a CAD user's words: whether the dimensions
+/// determine the shape, how that was decided, and the clusters that can flip.
+fn global_text(system: &System, a: &Analysis) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(g) = &a.global_rigidity {
+        let how = match (g.arithmetic, g.error_bound) {
+            (Arithmetic::Float { .. }, _) => "approximate, in float".to_owned(),
+            (_, Some(b)) => {
+                format!("modulo {}, wrong with probability below {b:.0e}", gcs_rank::ModP::PRIME)
+            }
+            (_, None) => "proven".to_owned(),
+        };
+        let line = if g.globally_rigid {
+            "globally rigid: the dimensions determine the shape (up to moving and mirroring the \
+             whole)"
+                .to_owned()
+        } else if !g.rigid {
+            "not globally rigid: the same dimensions admit other shapes (flips); it is not even \
+             rigid"
+                .to_owned()
+        } else {
+            "not globally rigid: the same dimensions admit other shapes (flips)".to_owned()
+        };
+        out.push(format!("  {line} [{}, {how}]", g.method.name()));
+    }
+    // The clusters that can flip, unless that is only the whole system again.
+    let whole_is_one = a.global_rigidity.is_some() && a.clusters.len() == 1;
+    if !whole_is_one {
+        out.extend(clusters::flips_text(system, &a.clusters, &a.cluster_global_rigidity));
+    }
     out
 }
 

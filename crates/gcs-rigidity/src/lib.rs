@@ -71,6 +71,7 @@ pub mod dm;
 pub mod dor;
 pub mod error;
 pub mod flow;
+pub mod global;
 pub mod network;
 mod report;
 pub mod rigidity;
@@ -79,6 +80,7 @@ pub mod witness_dor;
 pub use dm::{DmDecomposition, DmPart, dm_decomposition};
 pub use dor::{DorOracle, RuleDor};
 pub use error::RigidityError;
+pub use global::{jackson_jordan, k_connected, laman_rigid, redundantly_rigid};
 pub use network::{Network, Object, Share, Subsystem};
 pub use report::{StructuralReport, structural_analysis};
 pub use rigidity::{
