@@ -33,6 +33,9 @@ impl Verdict {
         r.sketch = None;
         r.witness_error_bound = None;
         r.uncertain = None;
+        // How global rigidity was decided (arithmetic, configuration, bound) is the backend's;
+        // `globally_rigid` itself stays.
+        r.global_rigidity = None;
         Verdict(r)
     }
 }
