@@ -200,14 +200,25 @@ impl Residuals for Problem<'_> {
 /// The drawing over the layout's columns: each entity's sketch, or where it has none the
 /// analysis' witness.
 fn start(system: &System, layout: &Layout, analysis: &Analysis) -> Vec<f64> {
-    let mut x: Vec<f64> =
-        analysis.witness.coords.iter().map(|q| q.to_f64().unwrap_or(0.0)).collect();
-    x.resize(layout.ncols(), 0.0);
+    let mut drawn = vec![false; layout.ncols()];
+    let mut x = vec![0.0; layout.ncols()];
+    let mut size: f64 = 1.0;
     for e in system.entity_indices() {
         if let Some(coords) = gcs_jacobian::sketch::sketch_coords_in::<f64>(system, e) {
             for (col, v) in layout.columns(e).zip(coords) {
-                x[col] = v;
+                (x[col], drawn[col]) = (v, true);
+                size = size.max(v.abs());
             }
+        }
+    }
+    // What the drawing leaves out starts at the witness; a modular witness holds residues,
+    // which are no real numbers: their pseudo-random images in [−size, size) instead.
+    let modular = analysis.witness.source == gcs_jacobian::WitnessSource::Modular;
+    let prime = gcs_rank::ModP::PRIME as f64;
+    for (col, q) in analysis.witness.coords.iter().enumerate().take(x.len()) {
+        if !drawn[col] {
+            let v = q.to_f64().unwrap_or(0.0);
+            x[col] = if modular { size * (2.0 * v / prime - 1.0) } else { v };
         }
     }
     x

@@ -114,3 +114,19 @@ fn every_example_solves() {
         assert_eq!(sol.status, Status::Solved, "{file}: {:?}", sol.redundant);
     }
 }
+
+/// A model whose witness is modular (the zoo: an arc's tangency at a point needs a square root,
+/// and its drawing is incomplete) starts where its drawing is silent from the witness's
+/// residues mapped into the drawing's size, not from residues of 2^61 − 1 taken as reals
+/// (which made the model's size, and so every tolerance, about 1e18).
+#[test]
+fn a_modular_witness_is_no_real_start() {
+    let s = gcs_suite::load("crates/gcs-model/tests/good/zoo2d.ron");
+    let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
+    assert_eq!(analysis.witness.source, gcs_jacobian::WitnessSource::Modular);
+    let sol = solve(&s, &analysis, &SolveOptions::default()).unwrap();
+    assert!(sol.scale < 1e3, "the model's size is the drawing's: {}", sol.scale);
+    for r in &sol.redundant {
+        assert!(r.allowance < 1.0, "{r:?}");
+    }
+}
