@@ -1,6 +1,7 @@
 //! `gcs analyze`: the witness analysis of each model, printed as text for people or as JSON
 //! Lines (the reports themselves are `gcs-report`'s).
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -23,6 +24,10 @@ pub(crate) struct Settings {
     pub(crate) decompose: bool,
     /// Write the W-decompositions as Graphviz DOT to this file (`--dot`).
     pub(crate) dot: Option<PathBuf>,
+    /// Files analysed at once (`--jobs`).
+    pub(crate) jobs: usize,
+    /// Only this shard of the inputs (`--shard i/n`).
+    pub(crate) shard: Option<(usize, usize)>,
 }
 
 /// What to tell a user whose exact analysis found only an approximate witness.
@@ -60,72 +65,107 @@ fn values(system: &gcs_model::System, analysis: &gcs_analysis::Analysis) -> Opti
 /// values (the solver's steps are dense: `gcs solve` takes more).
 const ANALYZE_SOLVE_LIMIT: usize = 1_000;
 
-pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
-    let mut out = Out::new();
-    let mut failed = 0;
+/// What one model gave: its report (text or JSON), and its W-decompositions as DOT; or the
+/// message of why it failed.
+type Outcome = Result<(String, String), String>;
+
+/// The analysis of one model, its report rendered.
+fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> Outcome {
+    let (system, import) = model?;
     let options = AnalysisOptions {
         backend: settings.backend,
         witness: WitnessOptions { seed: settings.seed, ..WitnessOptions::default() },
         decompose: settings.decompose,
         ..AnalysisOptions::default()
     };
-    let mut dot = String::new();
-    for (file, model) in batch::models(paths) {
-        let result = model.and_then(|(system, import)| {
-            // A CAD file holds several sketches: the message names the one that failed.
-            let at = match &import {
-                Some(_) => format!("{file}: {}", system.name()),
-                None => file.clone(),
-            };
-            let analysis =
-                analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
-            let structural = if settings.structural {
-                Some(Structural::new(&system, &analysis).map_err(|e| format!("{at}: {e}"))?)
-            } else {
-                None
-            };
-            let solution = values(&system, &analysis);
-            Ok((system, import, analysis, structural, solution))
-        });
-        match result {
-            Ok((system, import, analysis, s, solution)) => {
-                if settings.dot.is_some()
-                    && let Some(trees) = &analysis.decomposition
-                {
-                    dot.push_str(&gcs_report::clusters::dot(&system, trees));
-                }
-                match settings.format {
-                    Format::Json => {
-                        let mut report = Report::new(&system, &file, &analysis, s.as_ref());
-                        if let Some(sol) = &solution {
-                            report = report.with_solution(&system, sol);
-                        }
-                        out.line(&report.with_import(import).to_json())
-                    }
-                    Format::Text => {
-                        let text = gcs_report::text_with_solution(
-                            &system,
-                            &file,
-                            &analysis,
-                            s.as_ref(),
-                            solution.as_ref(),
-                        );
-                        out.line(&with_import_text(&text, import.as_ref()))
-                    }
-                }
+    // A CAD file holds several sketches: the message names the one that failed.
+    let at = match &import {
+        Some(_) => format!("{file}: {}", system.name()),
+        None => file.to_owned(),
+    };
+    let analysis = analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
+    let s = if settings.structural {
+        Some(Structural::new(&system, &analysis).map_err(|e| format!("{at}: {e}"))?)
+    } else {
+        None
+    };
+    let solution = values(&system, &analysis);
+    let dot = match (&settings.dot, &analysis.decomposition) {
+        (Some(_), Some(trees)) => gcs_report::clusters::dot(&system, trees),
+        _ => String::new(),
+    };
+    let report = match settings.format {
+        Format::Json => {
+            let mut report = Report::new(&system, file, &analysis, s.as_ref());
+            if let Some(sol) = &solution {
+                report = report.with_solution(&system, sol);
             }
-            Err(message) => {
-                failed += 1;
-                out.failure(settings.format, &file, &message);
+            report.with_import(import).to_json()
+        }
+        Format::Text => {
+            let text = gcs_report::text_with_solution(
+                &system,
+                file,
+                &analysis,
+                s.as_ref(),
+                solution.as_ref(),
+            );
+            with_import_text(&text, import.as_ref())
+        }
+    };
+    Ok((report, dot))
+}
+
+pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
+    let started = std::time::Instant::now();
+    let inputs = batch::shard(batch::expand(paths), settings.shard);
+    let mut out = Out::new();
+    let (mut models, mut failed) = (0usize, 0usize);
+    let mut dot = String::new();
+    let work = |input: &batch::Input| -> Vec<(String, Outcome)> {
+        batch::input_models(input)
+            .into_iter()
+            .map(|(file, model)| {
+                let outcome = one(&file, model, settings);
+                (file, outcome)
+            })
+            .collect()
+    };
+    let panicked = |input: &batch::Input, why: String| {
+        let (batch::Input::File(p) | batch::Input::Missing(p, _)) = input;
+        let file = batch::display(p);
+        let message = format!("{file}: internal error (a bug of gcs, please report it): {why}");
+        vec![(file, Err(message))]
+    };
+    batch::ordered(&inputs, settings.jobs, work, panicked, |results| {
+        for (file, outcome) in results {
+            models += 1;
+            match outcome {
+                Ok((report, d)) => {
+                    dot.push_str(&d);
+                    out.line(&report);
+                }
+                Err(message) => {
+                    failed += 1;
+                    out.failure(settings.format, &file, &message);
+                }
             }
         }
-    }
+    });
     out.flush();
     if let Some(path) = &settings.dot
         && let Err(e) = std::fs::write(path, dot)
     {
         eprintln!("error: cannot write {}: {e}", batch::display(path));
         failed += 1;
+    }
+    if std::io::stderr().is_terminal() && inputs.len() > 1 {
+        eprintln!(
+            "gcs: {} files, {models} models: {} analysed, {failed} failed, in {:.1} s",
+            inputs.len(),
+            models - failed.min(models),
+            started.elapsed().as_secs_f64()
+        );
     }
     batch::status(failed)
 }

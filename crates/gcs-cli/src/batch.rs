@@ -62,17 +62,7 @@ pub(crate) type Model = (gcs_model::System, Option<gcs_report::ImportReport>);
 /// message of why it could not be read (naming the file). A CAD file stands for each of its
 /// sketches, in the file's order.
 pub(crate) fn models(paths: &[PathBuf]) -> impl Iterator<Item = (String, Result<Model, String>)> {
-    expand(paths).into_iter().flat_map(|input| match input {
-        Input::Missing(p, why) => {
-            let file = display(&p);
-            let msg = format!("{file}: {why}");
-            vec![(file, Err(msg))]
-        }
-        Input::File(p) => {
-            let file = display(&p);
-            read_models(&p, &file).into_iter().map(|r| (file.clone(), r)).collect()
-        }
-    })
+    expand(paths).into_iter().flat_map(|input| input_models(&input))
 }
 
 /// The models of one file: a RON model, or the sketches of a CAD file (recognised by
@@ -145,4 +135,100 @@ impl Out {
 /// Exit status of a batch: 0 when every file went through, 1 otherwise.
 pub(crate) fn status(failed: usize) -> ExitCode {
     if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) }
+}
+
+/// `--shard i/n`: the inputs of shard `i` of `n`, in their order: the `k`-th input in sorted
+/// path order belongs to shard `k mod n`, so the shards of one command line are disjoint,
+/// cover every input, and do not depend on the machine that runs them.
+pub(crate) fn shard(inputs: Vec<Input>, shard: Option<(usize, usize)>) -> Vec<Input> {
+    let Some((i, n)) = shard else { return inputs };
+    let path = |input: &Input| match input {
+        Input::File(p) | Input::Missing(p, _) => display(p),
+    };
+    let mut order: Vec<usize> = (0..inputs.len()).collect();
+    order.sort_by_key(|&k| path(&inputs[k]));
+    let mut mine = vec![false; inputs.len()];
+    for (rank, k) in order.into_iter().enumerate() {
+        mine[k] = rank % n == i;
+    }
+    inputs.into_iter().zip(mine).filter(|(_, m)| *m).map(|(input, _)| input).collect()
+}
+
+/// Parses `i/n` (`0 ≤ i < n`).
+pub(crate) fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let parsed = text.split_once('/').and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)));
+    match parsed {
+        Some((i, n)) if i < n => Ok((i, n)),
+        _ => Err(format!("expected i/n with 0 ≤ i < n (such as 0/4), not {text:?}")),
+    }
+}
+
+/// The models of one input, as [`models`] yields them.
+pub(crate) fn input_models(input: &Input) -> Vec<(String, Result<Model, String>)> {
+    match input {
+        Input::Missing(p, why) => {
+            let file = display(p);
+            let msg = format!("{file}: {why}");
+            vec![(file, Err(msg))]
+        }
+        Input::File(p) => {
+            let file = display(p);
+            read_models(p, &file).into_iter().map(|r| (file.clone(), r)).collect()
+        }
+    }
+}
+
+/// Runs `work` on every item on `jobs` threads and hands the results to `emit` in the items'
+/// order, each as soon as it and every one before it are done (so the output is the
+/// sequential run's, streamed). A panic in `work` (there should be none) becomes
+/// `panicked(item, message)` instead, and the batch goes on.
+pub(crate) fn ordered<T: Sync, R: Send>(
+    items: &[T],
+    jobs: usize,
+    work: impl Fn(&T) -> R + Sync,
+    panicked: impl Fn(&T, String) -> R + Sync,
+    mut emit: impl FnMut(R),
+) {
+    let run = |item: &T| {
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(item))).unwrap_or_else(|e| {
+            let why = e
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_owned())
+                .or_else(|| e.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown cause".to_owned());
+            panicked(item, why)
+        })
+    };
+    let jobs = jobs.clamp(1, items.len().max(1));
+    if jobs == 1 {
+        items.iter().for_each(|item| emit(run(item)));
+        return;
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let (tx, rx) = std::sync::mpsc::channel::<(usize, R)>();
+    std::thread::scope(|scope| {
+        for _ in 0..jobs {
+            let tx = tx.clone();
+            let (next, run) = (&next, &run);
+            scope.spawn(move || {
+                loop {
+                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(item) = items.get(k) else { break };
+                    if tx.send((k, run(item))).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(tx);
+        let mut waiting = std::collections::BTreeMap::new();
+        let mut due = 0;
+        for (k, r) in rx {
+            waiting.insert(k, r);
+            while let Some(r) = waiting.remove(&due) {
+                emit(r);
+                due += 1;
+            }
+        }
+    });
 }

@@ -73,6 +73,15 @@ enum Command {
         /// subsystem it decomposes into. Render with `dot -Tsvg FILE`.
         #[arg(long, value_name = "FILE")]
         dot: Option<PathBuf>,
+        /// Files analysed at once, on that many threads (default: the cores of this machine).
+        /// The output is the same as one at a time, in the same order.
+        #[arg(long, short = 'j', value_name = "N")]
+        jobs: Option<usize>,
+        /// Analyse only shard I of N of the inputs (`0/4`, `1/4`, …): the k-th input in sorted
+        /// path order belongs to shard k mod N, so N machines or jobs of a scheduler (a Slurm
+        /// array, a Kubernetes indexed Job, GNU parallel) together analyse every input once.
+        #[arg(long, value_name = "I/N", value_parser = batch::parse_shard)]
+        shard: Option<(usize, usize)>,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -192,6 +201,8 @@ fn main() -> ExitCode {
             structural,
             decompose,
             dot,
+            jobs,
+            shard,
             paths,
         } => {
             if !(tolerance.is_finite() && tolerance >= 0.0) {
@@ -214,7 +225,18 @@ fn main() -> ExitCode {
             let decompose = decompose || dot.is_some();
             analyze::run(
                 &paths,
-                &analyze::Settings { backend, seed, format, structural, decompose, dot },
+                &analyze::Settings {
+                    backend,
+                    seed,
+                    format,
+                    structural,
+                    decompose,
+                    dot,
+                    jobs: jobs.unwrap_or_else(|| {
+                        std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
+                    }),
+                    shard,
+                },
             )
         }
         Command::Generate { family, size, seed } => {

@@ -435,3 +435,38 @@ fn golden_json_reports() {
 fn golden_text_reports() {
     golden("text", "txt");
 }
+
+/// Batches (issue 15): files analysed on several threads give the sequential run's output,
+/// byte for byte and in the same order; the shards of `--shard i/n` are disjoint and together
+/// are the whole run; a shard that does not exist is a usage error.
+#[test]
+fn parallel_and_sharded_batches_are_the_sequential_run() {
+    let run = |args: &[&str]| {
+        let (code, stdout, stderr) = gcs(args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        stdout
+    };
+    let sequential = run(&["analyze", "--format", "json", "--jobs", "1", "data/"]);
+    let parallel = run(&["analyze", "--format", "json", "--jobs", "3", "data/"]);
+    assert!(sequential.lines().count() > 20, "{sequential}");
+    assert_eq!(parallel, sequential);
+
+    let mut union: Vec<String> = Vec::new();
+    for i in 0..3 {
+        let shard = format!("{i}/3");
+        let out = run(&["analyze", "--format", "json", "--shard", &shard, "data/"]);
+        assert!(out.lines().count() > 0, "shard {shard} is empty");
+        union.extend(out.lines().map(str::to_owned));
+    }
+    let mut all: Vec<String> = sequential.lines().map(str::to_owned).collect();
+    let n = union.len();
+    union.sort();
+    union.dedup();
+    assert_eq!(union.len(), n, "a model in two shards");
+    all.sort();
+    assert_eq!(union, all);
+
+    let (code, _, stderr) = gcs(&["analyze", "--shard", "3/3", "data/"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("0 ≤ i < n"), "{stderr}");
+}
