@@ -137,21 +137,35 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
         let message = format!("{file}: internal error (a bug of gcs, please report it): {why}");
         vec![(file, Err(message))]
     };
+    // A progress bar on a terminal only (indicatif draws nothing when standard error is not
+    // one: pipes, files, CI).
+    let progress = indicatif::ProgressBar::new(inputs.len() as u64);
+    let terminal = std::io::stderr().is_terminal() && inputs.len() > 1;
+    if !terminal {
+        progress.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
     batch::ordered(&inputs, settings.jobs, work, panicked, |results| {
-        for (file, outcome) in results {
-            models += 1;
-            match outcome {
-                Ok((report, d)) => {
-                    dot.push_str(&d);
-                    out.line(&report);
-                }
-                Err(message) => {
-                    failed += 1;
-                    out.failure(settings.format, &file, &message);
+        progress.inc(1);
+        // (The bar is cleared while reports are written, in case standard output is the same
+        // terminal.)
+        progress.suspend(|| {
+            for (file, outcome) in results {
+                models += 1;
+                match outcome {
+                    Ok((report, d)) => {
+                        dot.push_str(&d);
+                        out.line(&report);
+                    }
+                    Err(message) => {
+                        failed += 1;
+                        out.failure(settings.format, &file, &message);
+                    }
                 }
             }
-        }
+            out.flush();
+        });
     });
+    progress.finish_and_clear();
     out.flush();
     if let Some(path) = &settings.dot
         && let Err(e) = std::fs::write(path, dot)
@@ -159,7 +173,7 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
         eprintln!("error: cannot write {}: {e}", batch::display(path));
         failed += 1;
     }
-    if std::io::stderr().is_terminal() && inputs.len() > 1 {
+    if terminal {
         eprintln!(
             "gcs: {} files, {models} models: {} analysed, {failed} failed, in {:.1} s",
             inputs.len(),
