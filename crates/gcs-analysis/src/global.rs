@@ -122,7 +122,12 @@ pub fn distance_framework(
     {
         return None;
     }
-    let local = |e: EntityIdx| entities.iter().position(|x| *x == e);
+    // Each entity's place in `entities` (one lookup per constraint, not a search).
+    let mut place = vec![None; system.entities().len()];
+    for (i, e) in entities.iter().enumerate() {
+        place[e.index()] = Some(i);
+    }
+    let local = |e: EntityIdx| place[e.index()];
     let mut parent: Vec<usize> = (0..entities.len()).collect();
     fn find(parent: &mut [usize], mut x: usize) -> usize {
         while parent[x] != x {
