@@ -166,6 +166,7 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
         });
     });
     progress.finish_and_clear();
+    let analysed = models - failed;
     out.flush();
     if let Some(path) = &settings.dot
         && let Err(e) = std::fs::write(path, dot)
@@ -175,9 +176,10 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     }
     if terminal {
         eprintln!(
-            "gcs: {} files, {models} models: {} analysed, {failed} failed, in {:.1} s",
+            "gcs: {} files, {models} models: {} analysed, {} failed, in {:.1} s",
             inputs.len(),
-            models - failed.min(models),
+            analysed,
+            models - analysed,
             started.elapsed().as_secs_f64()
         );
     }
