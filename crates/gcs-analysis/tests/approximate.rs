@@ -106,3 +106,55 @@ fn incidence_is_judged_to_the_written_precision() {
         }
     }
 }
+
+/// A hexagon about a circle as Onshape draws it (SketchGraphs' sample): six segments, each
+/// tangent to the circle somewhere, joined end to end, with the midpoint of one side on the
+/// circle and a distance between two opposite sides (a distance between lines: they must be
+/// parallel). The loop of tangencies closes only if each side's line is placed before its
+/// end points (a carrier tangent to the circle), and the distance only if the parallelism it
+/// implies is imposed; with both, the exact and modular backends analyse it at a modular
+/// witness (its tangent points are irrational), with float's verdict: 5 degrees of freedom,
+/// and the side's tangency redundant with its midpoint on the circle (never transversal).
+#[test]
+fn a_polygon_about_a_circle_closes_its_loop() {
+    const HEXAGON: &str = r#"System(dim: 2,
+      entities: [Circle(id: "c", center: [0, 0], radius: 6.5),
+        Point(id: "a0", at: [6.5, 3.75277675]), Point(id: "b0", at: [6.5, -3.75277675]),
+        Segment(id: "s0", from: "a0", to: "b0"),
+        Point(id: "a1", at: [6.5, -3.75277675]), Point(id: "b1", at: [0, -7.505553499]),
+        Segment(id: "s1", from: "a1", to: "b1"),
+        Point(id: "a2", at: [0, -7.505553499]), Point(id: "b2", at: [-6.5, -3.75277675]),
+        Segment(id: "s2", from: "a2", to: "b2"),
+        Point(id: "a3", at: [-6.5, -3.75277675]), Point(id: "b3", at: [-6.5, 3.75277675]),
+        Segment(id: "s3", from: "a3", to: "b3"),
+        Point(id: "a4", at: [-6.5, 3.75277675]), Point(id: "b4", at: [0, 7.505553499]),
+        Segment(id: "s4", from: "a4", to: "b4"),
+        Point(id: "a5", at: [0, 7.505553499]), Point(id: "b5", at: [6.5, 3.75277675]),
+        Segment(id: "s5", from: "a5", to: "b5"),
+        Point(id: "m", at: [6.5, 0])],
+      constraints: [DistanceY(id: "level", a: "c.center", b: "m", value: 0),
+        Midpoint(id: "mid", point: "m", segment: "s0"), Incident(id: "on", a: "m", b: "c"),
+        Coincident(id: "j0", a: "b0", b: "a1"), Coincident(id: "j1", a: "b1", b: "a2"),
+        Coincident(id: "j2", a: "b2", b: "a3"), Coincident(id: "j3", a: "b3", b: "a4"),
+        Coincident(id: "j4", a: "b4", b: "a5"), Coincident(id: "j5", a: "b5", b: "a0"),
+        Tangent(id: "t0", a: "c", b: "s0"), Tangent(id: "t1", a: "c", b: "s1"),
+        Tangent(id: "t2", a: "c", b: "s2"), Tangent(id: "t3", a: "c", b: "s3"),
+        Tangent(id: "t4", a: "c", b: "s4"), Tangent(id: "t5", a: "c", b: "s5"),
+        Distance(id: "width", a: "s3", b: "s0", value: 13)])"#;
+    let s = System::from_ron_str(HEXAGON, None).unwrap();
+    let float = analyze(
+        &s,
+        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+    )
+    .unwrap();
+    let ids = |a: &gcs_analysis::Analysis| -> Vec<String> {
+        a.redundant.iter().map(|r| s.constraint(r.constraint).id.clone()).collect()
+    };
+    assert_eq!((float.dof, ids(&float)), (5, vec!["t0".to_string()]));
+    for backend in [Backend::Exact, Backend::ModP] {
+        let a = analyze(&s, &AnalysisOptions { backend, ..Default::default() })
+            .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
+        assert_ne!(a.witness.source, WitnessSource::Approximate, "{backend:?}");
+        assert_eq!((a.rank, a.dof, ids(&a)), (float.rank, 5, ids(&float)), "{backend:?}");
+    }
+}

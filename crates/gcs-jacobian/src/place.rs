@@ -400,7 +400,16 @@ pub(crate) fn place(
     scale: f64,
     options: &PlaceOptions,
 ) -> Result<Vec<Q>, PlaceFailure> {
-    let plain = place_in(system, layout, pref, scale, options);
+    // A 2D distance between lines holds only between parallel lines (the witness is checked
+    // for it): the parallelism is imposed, as a constraint of its own, like the others.
+    let ncons = system.constraints().len();
+    let implied = with_implied_parallels(system);
+    let system = implied.as_ref().unwrap_or(system);
+    let own = |f: PlaceFailure| PlaceFailure {
+        entity: f.entity,
+        constraints: f.constraints.into_iter().filter(|c| c.index() < ncons).collect(),
+    };
+    let plain = place_in(system, layout, pref, scale, options).map_err(own);
     if plain.is_ok() {
         return plain;
     }
@@ -427,6 +436,39 @@ pub(crate) fn place(
         Ok(x) => Ok(x[..layout.ncols()].to_vec()),
         Err(_) => plain,
     }
+}
+
+/// The suffix of the id of the parallelism [`with_implied_parallels`] adds.
+const IMPLIED_PARALLEL: &str = "#parallel";
+
+/// The 2D system with a `Parallel` constraint (appended, so indices of the system's own
+/// constraints are kept) for each distance between two lines, which holds only between
+/// parallel lines; `None` when there is none (or an id is taken).
+fn with_implied_parallels(system: &System) -> Option<System> {
+    use gcs_model::SystemBuilder;
+    if system.dim() != Dim::Two {
+        return None;
+    }
+    let pairs: Vec<(String, EntityIdx, EntityIdx)> = system
+        .constraints()
+        .iter()
+        .filter_map(|c| match c.signature {
+            Signature::Metric(gcs_model::Metric::DistanceLineLine(a, b)) => {
+                Some((c.id.clone(), a, b))
+            }
+            _ => None,
+        })
+        .collect();
+    if pairs.is_empty() {
+        return None;
+    }
+    let mut b = SystemBuilder::from_system(system.clone());
+    for (id, x, y) in pairs {
+        let args = [system.entity(x).id.as_str(), system.entity(y).id.as_str()];
+        b.constraint(ConstraintKind::Parallel, &format!("{id}{IMPLIED_PARALLEL}"), &args, None)
+            .ok()?;
+    }
+    Some(b.build())
 }
 
 /// The height in bits beyond which a failed rational run ends the rational placement (see
@@ -647,7 +689,8 @@ fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
     };
     let mut segments: Vec<EntityIdx> = Vec::new();
     for c in system.constraints() {
-        if let Signature::TangentAtLineCircle { line, .. } = c.signature
+        if let Signature::TangentAtLineCircle { line, .. }
+        | Signature::TangentLineCircle { line, .. } = c.signature
             && system.segment_points(line).is_some()
             && !segments.contains(&line)
         {
@@ -678,6 +721,12 @@ fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
                         tangent_to.push(circle);
                         add(&mut b, ConstraintKind::Tangent, &[&l, &id(circle)])?;
                     }
+                }
+                Signature::TangentLineCircle { line, circle }
+                    if line == s && !tangent_to.contains(&circle) =>
+                {
+                    tangent_to.push(circle);
+                    add(&mut b, ConstraintKind::Tangent, &[&l, &id(circle)])?;
                 }
                 Signature::ParallelLineLine(x, y) | Signature::PerpendicularLineLine(x, y)
                     if (x == s) != (y == s) =>
