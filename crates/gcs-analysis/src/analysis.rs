@@ -7,7 +7,7 @@ use gcs_jacobian::{
 };
 use gcs_model::{ConstraintIdx, System};
 use gcs_rank::{
-    AMBIGUITY_BAND, BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP,
+    AMBIGUITY_BAND, BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP, ModQ,
     Proof, Rat, RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact,
     analyse_rows_with_margins, certify_rows, echelon_rank, float_rank_qr,
 };
@@ -499,6 +499,10 @@ pub(crate) fn rank_at(
             )
         }
         Backend::Rational => generic::<BigRational>(system, layout, witness, tracked)?,
+        // Inside the `with_modulus` of a modular witness over another prime: ModQ.
+        Backend::ModP if gcs_rank::modulus() != ModP::PRIME => {
+            generic::<ModQ>(system, layout, witness, tracked)?
+        }
         Backend::ModP => generic::<ModP>(system, layout, witness, tracked)?,
         Backend::Rug => rug_backend(system, layout, witness)?,
         Backend::Float { tolerance } => {
@@ -562,13 +566,14 @@ pub(crate) fn redundancies(
 }
 
 /// A bound on the probability that a random point of the constraints' solution set modulo the
-/// prime `p = 2^61 − 1` has a rank below the generic rank `r`: it must then lie on the
+/// witness's prime `p` (`2^61 − 1` or another of [`gcs_rank::WITNESS_PRIMES`]) has a rank below the generic rank `r`: it must then lie on the
 /// hypersurface where the `r × r` minors vanish, a polynomial of degree at most `3r` in the
 /// coordinates (each Jacobian entry has degree at most 3), which a uniformly random point hits
 /// with probability at most `3r / p` (Schwartz–Zippel). Heuristic: the witness's coordinates
 /// are built from uniformly random choices, not drawn uniformly themselves.
 pub fn modular_error_bound(rank: usize) -> f64 {
-    3.0 * rank.max(1) as f64 / ModP::PRIME as f64
+    // (The witness's prime: inside its `with_modulus`, the current one.)
+    3.0 * rank.max(1) as f64 / gcs_rank::modulus() as f64
 }
 
 /// The constraints a float analysis is not sure of: those whose dependent/independent decision
@@ -631,6 +636,23 @@ pub fn analyze_at(
     witness: Witness,
     options: &AnalysisOptions,
 ) -> Result<Analysis, AnalysisError> {
+    // A modular witness over another prime than ModP's is analysed modulo that prime: ModQ,
+    // inside its `with_modulus` (nothing but plain numbers comes out).
+    match witness.modulus {
+        Some(q) if witness.source == WitnessSource::Modular && q != ModP::PRIME => {
+            gcs_rank::with_modulus(q, || analyze_in_field(system, layout, witness, options))
+        }
+        _ => analyze_in_field(system, layout, witness, options),
+    }
+}
+
+/// [`analyze_at`] in the witness's field.
+fn analyze_in_field(
+    system: &System,
+    layout: &Layout,
+    witness: Witness,
+    options: &AnalysisOptions,
+) -> Result<Analysis, AnalysisError> {
     // At a modular witness everything is decided modulo the prime (the exact backend cannot
     // certify over ℚ at a point that is not rational).
     let modular = witness.source == WitnessSource::Modular;
@@ -674,6 +696,9 @@ pub fn analyze_at(
             )?,
             Arithmetic::Rational => {
                 clusters_in::<Rat>(system, layout, &witness, exact, &cluster_options)?
+            }
+            Arithmetic::ModP if gcs_rank::modulus() != ModP::PRIME => {
+                clusters_in::<ModQ>(system, layout, &witness, exact, &cluster_options)?
             }
             Arithmetic::ModP => {
                 clusters_in::<ModP>(system, layout, &witness, exact, &cluster_options)?

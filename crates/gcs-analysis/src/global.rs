@@ -50,7 +50,8 @@ use gcs_jacobian::{Layout, Witness, WitnessSource};
 use gcs_model::rng::SplitMix64;
 use gcs_model::{ConstraintIdx, EntityIdx, EntityKind, Metric, Signature, System};
 use gcs_rank::{
-    Echelon, EchelonOptions, Field, ModP, SparseRow, echelon_rank, random_kernel_vector,
+    Echelon, EchelonOptions, Field, ModP, ModQ, PrimeField, SparseRow, echelon_rank,
+    random_kernel_vector,
 };
 
 use crate::analysis::{Arithmetic, Backend};
@@ -231,9 +232,9 @@ fn stress_rows<F: Field>(f: Graph<'_>, omega: &[F]) -> Vec<SparseRow<F>> {
 }
 
 /// One draw modulo `p` at `x`.
-fn draw_modp(f: Graph<'_>, x: &[Vec<ModP>], rng: &mut SplitMix64) -> Draw {
+fn draw_modp<F: PrimeField>(f: Graph<'_>, x: &[Vec<F>], rng: &mut SplitMix64) -> Draw {
     let (n, d, m) = (f.n, f.d, f.bars.len());
-    let mut random = || ModP::new(rng.below(ModP::PRIME));
+    let mut random = || F::residue(rng.below(F::prime()));
     let (rank, omega) = random_kernel_vector(m, transposed_rows(f, x), &mut random);
     if rank < rigid_rank(n, d) || target_rank(n, d) == 0 {
         return Draw { rank, stress_rank: 0 };
@@ -297,12 +298,17 @@ pub fn stress_test(
         return answer(g, draw, Arithmetic::Float { tolerance }, false);
     }
     // A modular witness is a configuration modulo p already; a rational one is mapped there.
-    let at_witness = match witness.source {
+    // (A modular witness over another prime than ModP's is analysed inside its
+    // `with_modulus`, in ModQ.)
+    let first = match witness.source {
         WitnessSource::Approximate => None,
-        _ => vertex_coords::<ModP>(f, layout, witness),
+        _ if gcs_rank::modulus() != ModP::PRIME => {
+            vertex_coords::<ModQ>(f, layout, witness).map(|x| draw_modp(g, &x, &mut rng))
+        }
+        _ => vertex_coords::<ModP>(f, layout, witness).map(|x| draw_modp(g, &x, &mut rng)),
     };
-    if let Some(x) = at_witness {
-        let first = answer(g, draw_modp(g, &x, &mut rng), Arithmetic::ModP, false);
+    if let Some(draw) = first {
+        let first = answer(g, draw, Arithmetic::ModP, false);
         if first.globally_rigid {
             return first;
         }

@@ -157,6 +157,7 @@ pub(crate) fn analyse(
         genericity_tested: false,
         sketch_rejected: None,
         no_exact_witness: None,
+        modulus: None,
     };
     let (outcome, _, _) = rank_at(system, layout, &drawing, backend)?;
     let at_sketch = redundancies(system, layout, &drawing, &outcome);

@@ -158,3 +158,41 @@ fn a_polygon_about_a_circle_closes_its_loop() {
         assert_eq!((a.rank, a.dof, ids(&a)), (float.rank, 5, ids(&float)), "{backend:?}");
     }
 }
+
+/// An equilateral triangle as Onshape and FreeCAD draw it: three segments with end points of
+/// their own, joined by coincidences, two equal lengths and a vertical side. Its third vertex
+/// needs √3, irrational and no square modulo 2^61 − 1 either: the modular witness is built
+/// modulo the next witness prime (where 3 is a square) and says so; the verdict is float's.
+#[test]
+fn an_equilateral_triangle_takes_the_next_prime() {
+    const TRIANGLE: &str = r#"System(dim: 2,
+      entities: [Point(id: "a1", at: [16.75, 92.5]), Point(id: "b1", at: [16.75, 94.5]),
+        Segment(id: "ab", from: "a1", to: "b1"),
+        Point(id: "b2", at: [16.75, 94.5]), Point(id: "c2", at: [15.017949192, 93.5]),
+        Segment(id: "bc", from: "b2", to: "c2"),
+        Point(id: "c3", at: [15.017949192, 93.5]), Point(id: "a3", at: [16.75, 92.5]),
+        Segment(id: "ca", from: "c3", to: "a3")],
+      constraints: [Vertical(id: "v", a: "ab"), Coincident(id: "k1", a: "b2", b: "b1"),
+        Coincident(id: "k2", a: "c3", b: "c2"), Coincident(id: "k3", a: "a3", b: "a1"),
+        EqualLength(id: "e1", a: "ca", b: "ab"), EqualLength(id: "e2", a: "ca", b: "bc"),
+        Distance(id: "d", a: "b2", b: "c2", value: 2)])"#;
+    let s = System::from_ron_str(TRIANGLE, None).unwrap();
+    let float = analyze(
+        &s,
+        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+    )
+    .unwrap();
+    assert!(float.well_constrained());
+    for backend in [Backend::Exact, Backend::ModP] {
+        let a = analyze(&s, &AnalysisOptions { backend, decompose: true, ..Default::default() })
+            .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
+        assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
+        assert_eq!(a.witness.modulus, Some(gcs_rank::WITNESS_PRIMES[1]), "{backend:?}");
+        assert!(a.well_constrained(), "{backend:?}");
+        assert_eq!((a.rank, a.dof, a.trivial_motions), (float.rank, 0, float.trivial_motions));
+        let bound = a.witness_error_bound.expect("a modular witness says how sure it is");
+        assert!(bound > 0.0 && bound < 1e-15, "{bound}");
+        assert_eq!(a.clusters.len(), 1, "{backend:?}: one rigid body");
+        assert!(a.decomposition.is_some());
+    }
+}

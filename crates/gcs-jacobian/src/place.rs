@@ -84,6 +84,9 @@ pub(crate) struct PlaceOptions {
 pub(crate) struct PlaceFailure {
     pub(crate) entity: EntityIdx,
     pub(crate) constraints: Vec<ConstraintIdx>,
+    /// Whether some run failed for want of a square root (modulo another prime, the roots
+    /// the construction needs may exist).
+    pub(crate) no_root: bool,
 }
 
 /// A failure of one run, with what the next run can learn from it.
@@ -408,6 +411,7 @@ pub(crate) fn place(
     let own = |f: PlaceFailure| PlaceFailure {
         entity: f.entity,
         constraints: f.constraints.into_iter().filter(|c| c.index() < ncons).collect(),
+        no_root: f.no_root,
     };
     let plain = place_in(system, layout, pref, scale, options).map_err(own);
     if plain.is_ok() {
@@ -434,7 +438,10 @@ pub(crate) fn place(
     }
     match place_in(&augmented, &aug_layout, &aug_pref, scale, options) {
         Ok(x) => Ok(x[..layout.ncols()].to_vec()),
-        Err(_) => plain,
+        Err(e) => plain.map_err(|mut p| {
+            p.no_root |= e.no_root;
+            p
+        }),
     }
 }
 
@@ -545,6 +552,7 @@ fn place_in(
     let mut learned = Learned::new(system);
     let (mut epoch, mut run, mut learnt, mut retries) = (0, 0usize, 0, 0);
     let mut failure = None;
+    let mut any_no_root = false;
     loop {
         let mut group = vec![EntityIdx(0); nent];
         let mut members = vec![Vec::new(); nent];
@@ -614,6 +622,7 @@ fn place_in(
         }
         // The first run's failure is reported: where the plain construction stopped.
         let no_root = f.no_root;
+        any_no_root |= no_root;
         if options.modular && no_root && retries < epochs {
             // Modulo the prime, other random choices have a square root half the time: the
             // same order again, nothing to learn.
@@ -633,7 +642,13 @@ fn place_in(
         }
         failure.get_or_insert(f.public);
     }
-    Err(failure.unwrap_or(PlaceFailure { entity: EntityIdx(0), constraints: Vec::new() }))
+    let mut failure = failure.unwrap_or(PlaceFailure {
+        entity: EntityIdx(0),
+        constraints: Vec::new(),
+        no_root: false,
+    });
+    failure.no_root = any_no_root;
+    Err(failure)
 }
 
 /// The system with a *carrier* line for each 2D segment that is tangent at a point to a
@@ -1032,7 +1047,7 @@ impl Placer<'_> {
                 let suspects = self.suspects(g, &constraints);
                 let entity = self.members[g.index()].first().copied().unwrap_or(g);
                 failures.push(RunFailure {
-                    public: PlaceFailure { entity, constraints },
+                    public: PlaceFailure { entity, constraints, no_root: self.no_root },
                     group: g,
                     suspects,
                     no_root: self.no_root,
@@ -1054,6 +1069,7 @@ impl Placer<'_> {
                 public: PlaceFailure {
                     entity: self.members[g.index()].first().copied().unwrap_or(g),
                     constraints: Vec::new(),
+                    no_root: false,
                 },
                 group: g,
                 suspects: Vec::new(),
@@ -1097,7 +1113,7 @@ impl Placer<'_> {
     fn unit_near(&mut self, w: &[f64]) -> Option<Vec<Q>> {
         if self.modular {
             let params: Vec<Q> = (0..w.len() - 1)
-                .map(|_| Num::P(gcs_rank::ModP::new(self.rng.next_u64())))
+                .map(|_| Num::P(gcs_rank::ModQ::new(self.rng.next_u64())))
                 .collect();
             return unit_at(&params, false);
         }
@@ -1114,7 +1130,7 @@ impl Placer<'_> {
     /// overwhelming probability.
     fn random_small(&mut self) -> Q {
         if self.modular {
-            return Num::P(gcs_rank::ModP::new(self.rng.next_u64()));
+            return Num::P(gcs_rank::ModQ::new(self.rng.next_u64()));
         }
         qla::approx(self.noise * self.scale * (2.0 * self.rng.unit_f64() - 1.0), 1_000_000)
     }
@@ -1138,6 +1154,33 @@ impl Placer<'_> {
             }
             at.push((m, slice));
             offset += k;
+        }
+        // A point does not land on a placed point that shares a constraint with it and that
+        // the drawing has apart: that is a special position of the constraints (an equal
+        // chord folded back onto the vertex before it, which modulo p, where no root is
+        // nearer the drawing than the other, is taken half the time), not a generic point.
+        for (m, slice) in &at {
+            if self.system.entity(*m).kind() != gcs_model::EntityKind::Point {
+                continue;
+            }
+            let own = self.layout.columns(*m);
+            for ci in &self.adjacent[m.index()] {
+                for o in &self.bases[ci.index()] {
+                    if o == m
+                        || !self.placed[o.index()]
+                        || self.group[o.index()] == self.group[m.index()]
+                        || self.system.entity(*o).kind() != gcs_model::EntityKind::Point
+                    {
+                        continue;
+                    }
+                    let theirs = self.layout.columns(*o);
+                    if self.coords[theirs.clone()] == **slice
+                        && self.pref[theirs] != self.pref[own.clone()]
+                    {
+                        return false;
+                    }
+                }
+            }
         }
         at.iter().all(|(m, slice)| {
             self.partners[m.index()].iter().all(|o| {
@@ -1395,6 +1438,14 @@ impl Placer<'_> {
         let mut sides: Vec<Vec<Rows>> = Vec::new();
         let mut rest: Vec<(AffineMap, AffineMap)> = Vec::new();
         for q in quads {
+            // A quadric whose quadratic part vanishes on the solutions of the linear equations
+            // is linear there (|c − a|² = |b − c|² for a point c placed with a coincident copy
+            // of itself: the squares of c cancel only once the copies are one point).
+            if q.0.quadratic_form(&q.1, d).iter().flatten().all(Q::is_zero) {
+                let (g, c) = q.0.linear_part(&q.1, d);
+                linear.push((g, -c));
+                continue;
+            }
             // |P|² = |M|² where P and M keep a fixed direction factorises over ℚ when the
             // product of the lengths of the directions is rational: p·|dP|² = ±m·|dP||dM|
             // (a circle tangent to a line with a rational unit normal…).
@@ -1598,7 +1649,7 @@ impl Placer<'_> {
             let mut reflection = || {
                 (0..8).find_map(|_| {
                     let v: Vec<Q> =
-                        (0..k).map(|_| Num::P(gcs_rank::ModP::new(self.rng.next_u64()))).collect();
+                        (0..k).map(|_| Num::P(gcs_rank::ModQ::new(self.rng.next_u64()))).collect();
                     qla::reflection(&v)
                 })
             };

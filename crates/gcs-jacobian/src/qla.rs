@@ -4,29 +4,31 @@
 use std::iter::Sum;
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-use gcs_rank::{BigRational, Field, ModP, RankError, Rat};
+use gcs_rank::{BigRational, Field, ModQ, RankError, Rat, modulus};
 
 /// The exact number of the placement: a rational (small values stay in machine words), or an
-/// integer modulo 2^61 − 1 when the placement runs over that field (a *modular* witness: square
+/// integer modulo a prime ([`ModQ`]: the prime of the [`gcs_rank::with_modulus`] the placement
+/// runs in, one of [`gcs_rank::WITNESS_PRIMES`], all `≡ 3 mod 4`) when the placement runs over
+/// that field (a *modular* witness: square
 /// roots exist for half the residues, where a rational placement needs a perfect square).
 ///
 /// A placement is in one field; constants written as rationals (`2`, `1/7`, approximations of
 /// a direction) join a modular computation as their images modulo the prime.
 pub(crate) type Q = Num;
 
-/// A rational or a residue modulo [`ModP::PRIME`] (see [`Q`]).
+/// A rational or a residue modulo the current prime (see [`Q`]).
 #[derive(Clone, Debug)]
 pub(crate) enum Num {
     /// An exact rational.
     R(Rat),
-    /// A residue modulo 2^61 − 1.
-    P(ModP),
+    /// A residue modulo the current prime.
+    P(ModQ),
 }
 
 /// The image of a rational modulo the prime (a denominator the prime divides maps to 0: no
 /// constant of the placement has one).
-fn residue(r: &Rat) -> ModP {
-    ModP::from_rat(r).unwrap_or_default()
+fn residue(r: &Rat) -> ModQ {
+    ModQ::from_rat(r).unwrap_or_default()
 }
 
 impl Num {
@@ -50,18 +52,18 @@ impl Num {
     pub(crate) fn to_f64(&self) -> f64 {
         match self {
             Num::R(r) => r.to_f64(),
-            Num::P(p) => 2.0 * (p.value() as f64 / ModP::PRIME as f64) - 1.0,
+            Num::P(p) => 2.0 * (p.value() as f64 / modulus() as f64) - 1.0,
         }
     }
 
     /// The exact square root when it exists: of a perfect square over ℚ; modulo the prime
-    /// (`p ≡ 3 mod 4`: `a^((p+1)/4)`) for half the residues.
+    /// (every witness prime is `≡ 3 mod 4`: `a^((p+1)/4)`) for half the residues.
     pub(crate) fn sqrt_exact(&self) -> Option<Num> {
         match self {
             Num::R(r) => r.sqrt_exact().map(Num::R),
             Num::P(a) => {
-                let mut e = (ModP::PRIME + 1) / 4;
-                let (mut base, mut root) = (*a, ModP::new(1));
+                let mut e = (modulus() + 1) / 4;
+                let (mut base, mut root) = (*a, ModQ::new(1));
                 while e > 0 {
                     if e & 1 == 1 {
                         root = Field::mul(&root, &base);
@@ -83,7 +85,7 @@ impl Num {
     }
 
     /// The residue (a rational is mapped to its image).
-    pub(crate) fn modular(&self) -> ModP {
+    pub(crate) fn modular(&self) -> ModQ {
         match self {
             Num::R(r) => residue(r),
             Num::P(p) => *p,
@@ -94,7 +96,7 @@ impl Num {
         a: &Num,
         b: &Num,
         r: impl Fn(&Rat, &Rat) -> Rat,
-        p: impl Fn(&ModP, &ModP) -> ModP,
+        p: impl Fn(&ModQ, &ModQ) -> ModQ,
     ) -> Num {
         match (a, b) {
             (Num::R(x), Num::R(y)) => Num::R(r(x, y)),
@@ -166,8 +168,8 @@ macro_rules! num_assign {
 
 /// The quotient modulo the prime (0 for a zero divisor, which the placement never divides by
 /// where it matters: it checks every result exactly).
-fn div_mod(x: &ModP, y: &ModP) -> ModP {
-    y.inv().map_or(ModP::default(), |i| Field::mul(x, &i))
+fn div_mod(x: &ModQ, y: &ModQ) -> ModQ {
+    y.inv().map_or(ModQ::default(), |i| Field::mul(x, &i))
 }
 
 num_op!(Add, add, |x, y| x + y, Field::add);

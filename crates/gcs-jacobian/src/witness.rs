@@ -16,7 +16,7 @@
 
 use gcs_model::rng::SplitMix64;
 use gcs_model::{EntityIdx, System};
-use gcs_rank::{BigRational, EchelonOptions, Field, ModP, Rat};
+use gcs_rank::{BigRational, EchelonOptions, Field, ModP, ModQ, Rat};
 
 use crate::error::{JacobianError, NoWitness, Rejection};
 use crate::jacobian::{Jacobian, assemble};
@@ -96,6 +96,9 @@ pub struct Witness {
     pub sketch_rejected: Option<Rejection>,
     /// For an approximate witness, why no exact one was found.
     pub no_exact_witness: Option<NoWitness>,
+    /// For a modular witness, the prime its coordinates are residues modulo (one of
+    /// [`gcs_rank::WITNESS_PRIMES`]); `None` for the others.
+    pub modulus: Option<u64>,
 }
 
 fn sketch_fn(system: &System) -> impl Fn(EntityIdx) -> Option<Vec<Rat>> + '_ {
@@ -109,12 +112,31 @@ impl Witness {
     /// When a coordinate has no image in `F` (a denominator divisible by the prime), and for a
     /// modular witness in any field but [`ModP`] ([`JacobianError::ModularWitness`]).
     pub fn coords_in<F: Field>(&self) -> Result<Vec<F>, JacobianError> {
-        if self.source == WitnessSource::Modular
-            && std::any::TypeId::of::<F>() != std::any::TypeId::of::<ModP>()
-        {
+        if self.source == WitnessSource::Modular && !self.in_its_field::<F>() {
             return Err(JacobianError::ModularWitness { field: F::NAME });
         }
         Ok(self.coords.iter().map(F::from_rational).collect::<Result<Vec<F>, _>>()?)
+    }
+
+    /// Whether `F` is the field of this modular witness: [`ModP`] for the Mersenne prime, and
+    /// [`ModQ`] inside [`gcs_rank::with_modulus`] of its prime (see [`Witness::in_field`]).
+    fn in_its_field<F: Field>(&self) -> bool {
+        let modulus = self.modulus.unwrap_or(ModP::PRIME);
+        let is = |t: std::any::TypeId| std::any::TypeId::of::<F>() == t;
+        (is(std::any::TypeId::of::<ModP>()) && modulus == ModP::PRIME)
+            || (is(std::any::TypeId::of::<ModQ>()) && gcs_rank::modulus() == modulus)
+    }
+
+    /// Runs `f` where the witness's numbers mean what they say: for a modular witness over a
+    /// prime other than [`ModP`]'s, inside [`gcs_rank::with_modulus`] of that prime, where the
+    /// witness's field is [`ModQ`] (`gcs_rank::modulus() != ModP::PRIME` tells the two apart).
+    pub fn in_field<R>(&self, f: impl FnOnce() -> R) -> R {
+        match self.modulus {
+            Some(q) if self.source == WitnessSource::Modular && q != ModP::PRIME => {
+                gcs_rank::with_modulus(q, f)
+            }
+            _ => f(),
+        }
     }
 
     /// The Jacobian at this witness, in the field `F`.
@@ -208,32 +230,59 @@ fn modular(
     sketch_rejected: &Option<Rejection>,
     why: &NoWitness,
 ) -> Result<Option<Witness>, JacobianError> {
-    let mut best: Option<(Vec<ModP>, Plan, usize)> = None;
-    for round in 0..options.rounds.max(1) + 1 {
-        let opts = PlaceOptions {
-            seed: options.seed.wrapping_mul(0x51ED_270B).wrapping_add(round as u64 + 1),
-            noise: 1e-3,
-            modular: true,
-        };
-        let Ok(coords) = place::place(system, layout, pref, scale, &opts) else { continue };
-        let x: Vec<ModP> = coords.iter().map(crate::qla::Num::modular).collect();
-        // Fixed positions are read off the witness (see `place`).
-        let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
-        let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
-        let j = assemble(system, layout, &p, &x, &sketch);
-        let r = gcs_rank::echelon_rank(j.ncols, j.rows).0;
-        if best.as_ref().is_none_or(|b| r > b.2) {
-            best = Some((x, p, r));
+    // Over each prime in turn (the first that has one: a construction that needs a square
+    // root the sketch's shape forces, √3 for an equilateral triangle, finds none modulo a
+    // prime where it is not a square, whatever the random choices).
+    // Only a construction that failed for want of a square root is tried modulo the next prime.
+    let mut needs_root = true;
+    for q in gcs_rank::WITNESS_PRIMES {
+        if !needs_root {
+            break;
+        }
+        needs_root = false;
+        let found = gcs_rank::with_modulus(q, || -> Result<_, JacobianError> {
+            let mut best: Option<(Vec<u64>, Plan, usize)> = None;
+            // (Modulo the further primes, one round: they are tried for a root, and the
+            // first round's random choices have it as often as any other's.)
+            let rounds = if q == ModP::PRIME { options.rounds.max(1) + 1 } else { 1 };
+            for round in 0..rounds {
+                let opts = PlaceOptions {
+                    seed: options.seed.wrapping_mul(0x51ED_270B).wrapping_add(round as u64 + 1),
+                    noise: 1e-3,
+                    modular: true,
+                };
+                let coords = match place::place(system, layout, pref, scale, &opts) {
+                    Ok(coords) => coords,
+                    Err(f) => {
+                        needs_root |= f.no_root;
+                        continue;
+                    }
+                };
+                let x: Vec<ModQ> = coords.iter().map(crate::qla::Num::modular).collect();
+                // Fixed positions are read off the witness (see `place`).
+                let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
+                let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
+                let j = assemble(system, layout, &p, &x, &sketch);
+                let r = gcs_rank::echelon_rank(j.ncols, j.rows).0;
+                if best.as_ref().is_none_or(|b| r > b.2) {
+                    best = Some((x.iter().map(|v| v.value()).collect(), p, r));
+                }
+            }
+            Ok(best)
+        })?;
+        if let Some((x, plan, _)) = found {
+            return Ok(Some(Witness {
+                coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
+                source: WitnessSource::Modular,
+                plan,
+                genericity_tested: true,
+                sketch_rejected: sketch_rejected.clone(),
+                no_exact_witness: Some(why.clone()),
+                modulus: Some(q),
+            }));
         }
     }
-    Ok(best.map(|(x, plan, _)| Witness {
-        coords: x.iter().map(|v| BigRational::from_integer(v.value().into())).collect(),
-        source: WitnessSource::Modular,
-        plan,
-        genericity_tested: true,
-        sketch_rejected: sketch_rejected.clone(),
-        no_exact_witness: Some(why.clone()),
-    }))
+    Ok(None)
 }
 
 /// Finds a witness of `system` (see the module documentation).
@@ -318,6 +367,7 @@ pub fn find_witness(
             genericity_tested: tested,
             sketch_rejected,
             no_exact_witness: None,
+            modulus: None,
         }),
         None => {
             let msg = NoWitness { sketch: sketch_rejected.clone(), placement: failure };
@@ -353,6 +403,7 @@ pub fn find_witness(
                     genericity_tested: false,
                     sketch_rejected,
                     no_exact_witness: Some(msg),
+                    modulus: None,
                 }),
                 Err(_) => Err(JacobianError::NoWitness(msg)),
             }

@@ -118,7 +118,7 @@ pub use exact::{
 pub use field::Field;
 pub use float::float_rank_qr;
 pub use lsq::{LmOptions, LmOutcome, Residuals, levenberg_marquardt};
-pub use modp::{ModP, ModPrime};
+pub use modp::{ModP, ModPrime, ModQ, PrimeField, WITNESS_PRIMES, modulus, with_modulus};
 pub use num_rational::BigRational;
 pub use rank::{echelon_rank, random_kernel_vector};
 pub use rat::Rat;

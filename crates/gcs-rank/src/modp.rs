@@ -215,25 +215,90 @@ thread_local! {
 }
 
 /// An integer modulo a prime chosen at run time: the many primes of multi-modular lifting,
-/// which a const generic cannot enumerate. The modulus is per thread and is set for the
-/// duration of a closure by [`with_modulus`]; values must not outlive it. Crate-private for
-/// that reason.
+/// which a const generic cannot enumerate, and the primes of a modular witness
+/// ([`WITNESS_PRIMES`]). The modulus is per thread and is set for the duration of a closure
+/// by [`with_modulus`] (outside any, it is [`ModP::PRIME`]).
+///
+/// A value means nothing outside the closure it was made in: callers keep residues inside it
+/// and let only plain numbers (ranks, indices, [`ModQ::value`]) out.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
-pub(crate) struct ModQ(u64);
+pub struct ModQ(u64);
 
 impl ModQ {
-    pub(crate) fn value(self) -> u64 {
+    /// The residue of `v` modulo the current prime.
+    pub fn new(v: u64) -> Self {
+        ModQ(v % modulus())
+    }
+
+    /// The canonical representative, in `[0, modulus())`.
+    pub fn value(self) -> u64 {
         self.0
     }
 }
 
-fn modulus() -> u64 {
+/// The modulus of [`ModQ`] on this thread.
+pub fn modulus() -> u64 {
     MODULUS.with(Cell::get)
 }
 
+/// The primes a modular witness is built over, in the order tried: first the Mersenne prime
+/// of [`ModP`] (the fast one), then primes `≡ 3 (mod 4)` just below `2^61` (a square root is
+/// one power), the first of which has every prime up to 23 as a square. A construction whose
+/// numbers are forced irrational (an equilateral triangle needs `√3`, a regular octagon `√2`)
+/// has a modular point only where those are squares: `3` is none modulo `2^61 − 1`, and each
+/// further prime is a further chance, about one in two per square root.
+pub const WITNESS_PRIMES: [u64; 4] =
+    [ModP::PRIME, 2_305_843_009_213_682_039, 2_305_843_009_213_682_027, 2_305_843_009_213_681_999];
+
+/// A prime field: its prime, and its elements from and to machine words.
+pub trait PrimeField: Field + Copy {
+    /// The prime (for [`ModQ`], the current one).
+    fn prime() -> u64;
+    /// The residue of `v`.
+    fn residue(v: u64) -> Self;
+    /// The canonical representative, in `[0, prime)`.
+    fn representative(self) -> u64;
+}
+
+impl PrimeField for ModP {
+    fn prime() -> u64 {
+        ModP::PRIME
+    }
+    fn residue(v: u64) -> Self {
+        ModP::new(v)
+    }
+    fn representative(self) -> u64 {
+        self.0
+    }
+}
+
+impl<const P: u64> PrimeField for ModPrime<P> {
+    fn prime() -> u64 {
+        P
+    }
+    fn residue(v: u64) -> Self {
+        ModPrime::new(v)
+    }
+    fn representative(self) -> u64 {
+        self.0
+    }
+}
+
+impl PrimeField for ModQ {
+    fn prime() -> u64 {
+        modulus()
+    }
+    fn residue(v: u64) -> Self {
+        ModQ::new(v)
+    }
+    fn representative(self) -> u64 {
+        self.0
+    }
+}
+
 /// Runs `f` with the modulus of [`ModQ`] set to the prime `q` on this thread (restored after,
-/// even on unwinding).
-pub(crate) fn with_modulus<R>(q: u64, f: impl FnOnce() -> R) -> R {
+/// even on unwinding). `q` must be prime: nothing checks it.
+pub fn with_modulus<R>(q: u64, f: impl FnOnce() -> R) -> R {
     struct Restore(u64);
     impl Drop for Restore {
         fn drop(&mut self) {
@@ -249,7 +314,9 @@ impl Field for ModQ {
 
     #[inline]
     fn mul(&self, rhs: &Self) -> Self {
-        ModQ(((self.0 as u128 * rhs.0 as u128) % modulus() as u128) as u64)
+        let (product, q) = (self.0 as u128 * rhs.0 as u128, modulus());
+        // The Mersenne prime keeps its fast reduction (a modular witness is built over it first).
+        ModQ(if q == ModP::PRIME { mersenne_reduce(product) } else { (product % q as u128) as u64 })
     }
 }
 

@@ -233,6 +233,11 @@ pub struct Report {
     /// one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub witness_error_bound: Option<f64>,
+    /// At a modular witness: the prime its coordinates are residues modulo (`2^61 − 1`, or
+    /// another of the witness primes when the sketch's shape needs a square root that is none
+    /// modulo `2^61 − 1`: √3 for an equilateral triangle).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub witness_prime: Option<u64>,
     /// The float backend's constraints whose decision lies within the ambiguity band of its
     /// tolerance (only with `--backend float`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -410,6 +415,7 @@ impl Report {
             clusters_arithmetic: a.clusters_arithmetic.into(),
             sketch: a.sketch.as_ref().map(|sk| SketchReport::new(system, sk)),
             witness_error_bound: a.witness_error_bound,
+            witness_prime: a.witness.modulus,
             uncertain: a
                 .uncertain
                 .as_ref()
@@ -563,7 +569,7 @@ pub fn text_with_solution(
         (None, Some(bound)) => format!(
             " (modulo {} at a modular witness: not proven, wrong with probability below about \
              {bound:.0e})",
-            gcs_rank::ModP::PRIME
+            a.witness.modulus.unwrap_or(gcs_rank::ModP::PRIME)
         ),
         (None, None) => String::new(),
     };

@@ -31,7 +31,7 @@
 
 use gcs_jacobian::{Layout, Witness, WitnessOptions, WitnessSource, find_witness, motions};
 use gcs_model::{EntityIdx, System};
-use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, ModP, SparseRow};
+use gcs_rank::{BigRational, Echelon, EchelonOptions, Field, ModP, ModQ, SparseRow};
 
 use crate::dor::DorOracle;
 use crate::error::RigidityError;
@@ -74,6 +74,9 @@ pub struct WitnessDor {
 enum Spans {
     Rational(Vec<Vec<SparseRow<BigRational>>>),
     Modular(Vec<Vec<SparseRow<ModP>>>),
+    /// Modulo another witness prime: residues that mean something only inside its
+    /// `with_modulus`, where they are computed and used.
+    OtherPrime(u64, Vec<Vec<SparseRow<ModQ>>>),
 }
 
 impl Spans {
@@ -81,6 +84,7 @@ impl Spans {
         match self {
             Spans::Rational(s) => s.len(),
             Spans::Modular(s) => s.len(),
+            Spans::OtherPrime(_, s) => s.len(),
         }
     }
 
@@ -88,6 +92,7 @@ impl Spans {
         match self {
             Spans::Rational(s) => s.get(e).map_or(0, Vec::len),
             Spans::Modular(s) => s.get(e).map_or(0, Vec::len),
+            Spans::OtherPrime(_, s) => s.get(e).map_or(0, Vec::len),
         }
     }
 
@@ -108,6 +113,7 @@ impl Spans {
         match self {
             Spans::Rational(s) => union(s, entities, d),
             Spans::Modular(s) => union(s, entities, d),
+            Spans::OtherPrime(q, s) => gcs_rank::with_modulus(*q, || union(s, entities, d)),
         }
     }
 }
@@ -182,14 +188,23 @@ impl WitnessDor {
         if witness.source != WitnessSource::Modular {
             return WitnessDor::new(system, layout, &witness.coords);
         }
-        // A modular witness: the spans modulo the prime.
-        let coords: Vec<ModP> =
-            witness.coords_in().map_err(|e| RigidityError::Witness(e.to_string()))?;
-        if coords.len() != layout.ncols() || *layout != Layout::new(system) {
+        // A modular witness: the spans modulo its prime.
+        if witness.coords.len() != layout.ncols() || *layout != Layout::new(system) {
             return Err(RigidityError::Witness("the layout is not the system's".into()));
         }
-        let (displacements, spans) = spans_in(system, layout, &coords)?;
-        Ok(WitnessDor { displacements, spans: Spans::Modular(spans) })
+        let error = |e: gcs_jacobian::JacobianError| RigidityError::Witness(e.to_string());
+        match witness.modulus {
+            Some(q) if q != ModP::PRIME => gcs_rank::with_modulus(q, || {
+                let coords: Vec<ModQ> = witness.coords_in().map_err(error)?;
+                let (displacements, spans) = spans_in(system, layout, &coords)?;
+                Ok(WitnessDor { displacements, spans: Spans::OtherPrime(q, spans) })
+            }),
+            _ => {
+                let coords: Vec<ModP> = witness.coords_in().map_err(error)?;
+                let (displacements, spans) = spans_in(system, layout, &coords)?;
+                Ok(WitnessDor { displacements, spans: Spans::Modular(spans) })
+            }
+        }
     }
 
     /// Finds a witness of `system` (the sketch when it is one and is generic, else a rational

@@ -214,7 +214,7 @@ fn start(system: &System, layout: &Layout, analysis: &Analysis) -> Vec<f64> {
     // What the drawing leaves out starts at the witness; a modular witness holds residues,
     // which are no real numbers: their pseudo-random images in [−size, size) instead.
     let modular = analysis.witness.source == gcs_jacobian::WitnessSource::Modular;
-    let prime = gcs_rank::ModP::PRIME as f64;
+    let prime = analysis.witness.modulus.unwrap_or(gcs_rank::ModP::PRIME) as f64;
     for (col, q) in analysis.witness.coords.iter().enumerate().take(x.len()) {
         if !drawn[col] {
             let v = q.to_f64().unwrap_or(0.0);
