@@ -214,6 +214,9 @@ struct Problem<'s> {
     /// The whole configuration, the unknowns overwritten at each evaluation.
     full: RefCell<Vec<f64>>,
     scale: f64,
+    /// The homotopy parameter (1: the system itself) and the residuals at its start.
+    t: std::cell::Cell<f64>,
+    offset: RefCell<Vec<f64>>,
 }
 
 /// What a residual of constraint `c` is measured against: the model's size for a length, 180°
@@ -286,6 +289,8 @@ impl<'s> Problem<'s> {
             local,
             full: RefCell::new(x.to_vec()),
             scale,
+            t: std::cell::Cell::new(1.0),
+            offset: RefCell::new(Vec::new()),
         }
     }
 
@@ -312,23 +317,58 @@ impl<'s> Problem<'s> {
         )
     }
 
-    /// Damped Gauss–Newton from `x` (the whole configuration), updated in place; the steps
-    /// taken and whether it converged.
+    /// Damped Gauss–Newton from `x` (the whole configuration), updated in place, along the
+    /// Newton homotopy `r(y) − (1 − t)·r(x)` from `t = 0` (the start, where it holds) to
+    /// `t = 1` (the system): first in one step; where a step does not converge, in halved
+    /// steps (down to 1/1024), each started from the last point reached. Following the path
+    /// keeps the drawing's branch (the orientation of its triangles) where a direct solve
+    /// from a rough drawing falls into another solution or a local minimum. The steps taken
+    /// and whether it converged.
     fn run(&self, x: &mut [f64], options: &SolveOptions) -> (usize, bool) {
         if self.columns.is_empty() {
             return (0, true);
         }
         *self.full.borrow_mut() = x.to_vec();
-        let lm = LmOptions {
-            tolerance: options.tolerance * 1e-5,
-            max_iterations: options.max_iterations,
-            max_unknowns: usize::MAX,
-            ..LmOptions::default()
+        let mut y = self.gather(x);
+        self.t.set(1.0);
+        let offset = self.evaluate(&y).0;
+        *self.offset.borrow_mut() = offset;
+        let (mut t, mut dt, mut iterations) = (0.0f64, 1.0f64, 0);
+        let converged = loop {
+            let target = if t + dt >= 1.0 - 1e-12 { 1.0 } else { t + dt };
+            let last = target == 1.0;
+            self.t.set(target);
+            let lm = LmOptions {
+                tolerance: options.tolerance * if last { 1e-5 } else { 1e-3 },
+                max_iterations: if last && dt < 1.0 {
+                    options.max_iterations
+                } else {
+                    options.max_iterations.min(60)
+                },
+                max_unknowns: usize::MAX,
+                ..LmOptions::default()
+            };
+            let Some(outcome) = levenberg_marquardt(self, &y, &lm) else { break false };
+            iterations += outcome.iterations;
+            if outcome.converged {
+                y = outcome.x;
+                t = target;
+                if last {
+                    break true;
+                }
+                dt = (dt * 2.0).min(1.0);
+            } else if dt > 1.0 / 1024.0 {
+                dt /= 2.0;
+            } else {
+                if last {
+                    y = outcome.x;
+                }
+                break false;
+            }
         };
-        let start = self.gather(x);
-        let Some(outcome) = levenberg_marquardt(self, &start, &lm) else { return (0, false) };
-        self.scatter(&outcome.x, x);
-        (outcome.iterations, outcome.converged)
+        self.t.set(1.0);
+        self.scatter(&y, x);
+        (iterations, converged)
     }
 
     /// The largest relative residual of the constraints at `x`, with its constraint.
@@ -372,6 +412,12 @@ impl Residuals for Problem<'_> {
             }
         }
         let _ = self.layout;
+        let lag = 1.0 - self.t.get();
+        if lag != 0.0 {
+            for (v, o) in values.iter_mut().zip(self.offset.borrow().iter()) {
+                *v -= lag * o;
+            }
+        }
         (values, rows)
     }
 }
@@ -455,6 +501,10 @@ fn place(step: &plan::Step, layout: &Layout, system: &System, x0: &[f64], x: &[f
     }
 }
 
+/// The most unknowns of a cluster that the solver, failing to satisfy it from the drawing and
+/// from two other starts, reports as having no real solution.
+const SMALL_CLUSTER: usize = 24;
+
 /// Where a closed-form step put its point, and among how many candidates.
 struct Placed {
     at: [f64; 2],
@@ -512,6 +562,10 @@ pub fn solve(
                 continue;
             }
             let part = Problem::new(system, &layout, &equations, cs.clone(), &x0, scale);
+            // A large cluster the solver misses may still have a solution: not claimed.
+            if part.columns.len() > SMALL_CLUSTER {
+                continue;
+            }
             let mut best: Option<(f64, Vec<f64>)> = None;
             let mut solvable = false;
             for attempt in 0..3 {
@@ -702,4 +756,49 @@ pub fn solved_system(system: &System, solution: &Solution) -> System {
         let _ = out.set_sketch(e, geometry);
     }
     out
+}
+
+/// The triangles of distances of a plane system (three points joined pairwise by
+/// `Distance`s) whose orientation at `x` is the drawing's: `(kept, triangles)`.
+pub fn orientation_kept(system: &System, x: &[f64]) -> (usize, usize) {
+    let layout = Layout::new(system);
+    let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
+    let mut points: Vec<EntityIdx> = Vec::new();
+    let mut edges = Vec::new();
+    for c in system.constraint_indices() {
+        let constraint = system.constraint(c);
+        if constraint.kind != gcs_model::ConstraintKind::Distance {
+            continue;
+        }
+        let base = system.constraint_base_entities(c);
+        let [p, q] = base.as_slice() else { continue };
+        let mut id = |e: EntityIdx| {
+            *index.entry(e).or_insert_with(|| {
+                points.push(e);
+                points.len() - 1
+            })
+        };
+        edges.push((id(*p), id(*q)));
+    }
+    let drawn: Vec<f64> = {
+        let mut d = vec![0.0; layout.ncols()];
+        for e in system.entity_indices() {
+            if let Some(coords) = gcs_jacobian::sketch::sketch_coords_in::<f64>(system, e) {
+                for (col, v) in layout.columns(e).zip(coords) {
+                    d[col] = v;
+                }
+            }
+        }
+        d
+    };
+    let triangles = gcs_model::generate::triangles(points.len(), &edges);
+    let kept = triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|i| points[i]);
+            let turn = |y: &[f64]| closed::orientation(at(&layout, y, a), at(&layout, y, b), at(&layout, y, c));
+            turn(&drawn) * turn(x) > 0.0
+        })
+        .count();
+    (kept, triangles.len())
 }
