@@ -210,7 +210,7 @@ fn turn(a: &[f64], b: &[f64], c: &[f64]) -> f64 {
 
 /// A random Laman sketch drawn roughly, for solvers (issue 13): a random realization of a
 /// Laman graph (Henneberg moves, half of them type II; points with 4-decimal coordinates in
-/// `[-1000, 1000]`, distances its measures rounded to 4 decimals, plus one redundant distance
+/// `[-1000, 1000]`, distances its measures rounded to 6 decimals, plus one redundant distance
 /// `extra` as in [`laman_sketch`]), drawn with every point moved by up to `jitter` times the
 /// mean distance in each coordinate — except that a point of a triangle the move would turn
 /// over has its move halved until no triangle turns (the drawing shows the realization's
@@ -253,6 +253,14 @@ pub fn laman_drawn(n: usize, seed: u64, jitter: f64) -> (System, Vec<[f64; 2]>) 
         }
     }
     let decimal = |x: f64| BigRational::new(((x * 10_000.0).round() as i64).into(), 10_000.into());
+    // Distances to 6 decimals: a redundant one at its true value agrees within the solver's
+    // tolerance however long its circuit.
+    let dimension = |p: &[BigRational], q: &[BigRational]| {
+        use num_traits::ToPrimitive;
+        let d2: f64 =
+            p.iter().zip(q).map(|(a, b)| (a - b).to_f64().unwrap_or(0.0)).map(|x| x * x).sum();
+        BigRational::new(((d2.sqrt() * 1e6).round() as i64).into(), 1_000_000.into())
+    };
     let exact = |p: &[f64; 2]| vec![decimal(p[0]), decimal(p[1])];
     let mut b = SystemBuilder::new(format!("laman-drawn-{n}-{seed}"), Dim::Two);
     for i in 0..n {

@@ -77,6 +77,10 @@ pub struct SolveReport {
     pub no_solution: Vec<NoSolutionReport>,
     /// The steps of the solve, in order.
     pub plan: Vec<PlanReport>,
+    /// Closed-form choices reversed by backtracking.
+    pub backtracked: usize,
+    /// Whether backtracking hit its bound.
+    pub bound_hit: bool,
     /// When the solve failed: the constraint with the largest residual.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub worst: Option<String>,
@@ -214,6 +218,8 @@ impl SolveReport {
             redundant,
             no_solution,
             plan,
+            backtracked: solution.backtracked,
+            bound_hit: solution.bound_hit,
             worst: solution.worst.map(id),
             tolerance,
             scale: solution.scale,
@@ -279,6 +285,12 @@ impl SolveReport {
                 "  plan: {} step{}, {closed} of them a point by two distances in closed form, on the drawing's side\n",
                 self.plan.len(),
                 if self.plan.len() == 1 { "" } else { "s" },
+            ));
+        }
+        if self.bound_hit {
+            out.push_str(&format!(
+                "  backtracking stopped at its bound after reversing {} choices\n",
+                self.backtracked
             ));
         }
         for r in &self.redundant {

@@ -22,6 +22,9 @@ fn main() {
     let solution = solve(&system, &analysis, &SolveOptions { constructive, ..SolveOptions::default() }).expect("solve");
     let solved = t.elapsed();
     let kept = gcs_solve::orientation_kept(&system, &solution.x);
+    if std::env::var_os("VERBOSE").is_some() {
+        eprintln!("no_solution {:?}\nredundant {:?}", solution.no_solution, solution.redundant);
+    }
     println!(
         "n={n} seed={seed} jitter={jitter} analysis={:.3}s solve={:.3}s status={} max_residual={:.1e} iterations={} closed_form={} orientation_kept={}/{}",
         analysed.as_secs_f64(),

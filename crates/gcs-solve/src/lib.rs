@@ -135,6 +135,10 @@ pub struct Solution {
     pub no_solution: Vec<NoSolution>,
     /// The steps taken, in order.
     pub plan: Vec<PlanStep>,
+    /// How many closed-form choices backtracking reversed (against the drawing's side).
+    pub backtracked: usize,
+    /// Whether backtracking stopped at its bound with a step still without a candidate.
+    pub bound_hit: bool,
 }
 
 /// A part of the system that has no real solution (with the choices made for the rest).
@@ -324,7 +328,7 @@ impl<'s> Problem<'s> {
     /// keeps the drawing's branch (the orientation of its triangles) where a direct solve
     /// from a rough drawing falls into another solution or a local minimum. The steps taken
     /// and whether it converged.
-    fn run(&self, x: &mut [f64], options: &SolveOptions) -> (usize, bool) {
+    fn run(&self, x: &mut [f64], options: &SolveOptions, first_step: f64) -> (usize, bool) {
         if self.columns.is_empty() {
             return (0, true);
         }
@@ -332,8 +336,11 @@ impl<'s> Problem<'s> {
         let mut y = self.gather(x);
         self.t.set(1.0);
         let offset = self.evaluate(&y).0;
+        // A rough start (a residual beyond 1% of the model's size) takes `first_step` first.
+        let rough = offset.iter().any(|v| !(v.abs() <= 1e-2));
         *self.offset.borrow_mut() = offset;
-        let (mut t, mut dt, mut iterations) = (0.0f64, 1.0f64, 0);
+        let (mut t, mut dt, mut iterations) =
+            (0.0f64, if rough { first_step } else { 1.0f64 }, 0);
         let converged = loop {
             let target = if t + dt >= 1.0 - 1e-12 { 1.0 } else { t + dt };
             let last = target == 1.0;
@@ -479,7 +486,14 @@ fn triangle(system: &System, solved: &[ConstraintIdx], step: &plan::Step) -> NoS
 
 /// Places the point of a closed-form step: the real candidates, the one on the drawing's side
 /// of the anchors (ties by least displacement from the drawing); `None` when there is none.
-fn place(step: &plan::Step, layout: &Layout, system: &System, x0: &[f64], x: &[f64]) -> Placed {
+fn place(
+    step: &plan::Step,
+    layout: &Layout,
+    system: &System,
+    x0: &[f64],
+    x: &[f64],
+    flip: bool,
+) -> Placed {
     let [a, b] = step.anchors.map(|e| at(layout, x, e));
     let [ra, rb] = step.constraints.map(|c| value(system, c));
     let candidates = closed::circle_circle(a, ra, b, rb, 1e-12).candidates();
@@ -494,12 +508,22 @@ fn place(step: &plan::Step, layout: &Layout, system: &System, x0: &[f64], x: &[f
         _ if !flat => Some(if side > 0.0 { 0 } else { 1 }),
         _ => Some(if norm(candidates[0], drawn) <= norm(candidates[1], drawn) { 0 } else { 1 }),
     };
+    // Backtracking takes the other candidate.
+    let chosen = if flip && candidates.len() == 2 { chosen.map(|k| 1 - k) } else { chosen };
     Placed {
         at: chosen.map_or_else(|| closed::nearest_to_both(a, ra, b, rb), |k| candidates[k]),
         candidates: candidates.len(),
         chosen,
+        confidence: if norm(a0, b0) * norm(a0, drawn) > 0.0 {
+            side.abs() / (norm(a0, b0) * norm(a0, drawn))
+        } else {
+            0.0
+        },
     }
 }
+
+/// The most closed-form choices backtracking may change before giving up.
+const BACKTRACK_BOUND: usize = 32;
 
 /// The most unknowns of a cluster that the solver, failing to satisfy it from the drawing and
 /// from two other starts, reports as having no real solution.
@@ -510,6 +534,9 @@ struct Placed {
     at: [f64; 2],
     candidates: usize,
     chosen: Option<usize>,
+    /// How clearly the drawing shows the side: the sine of the drawn angle at the first
+    /// anchor (0: in line).
+    confidence: f64,
 }
 
 /// Solves `system` at its values, from its drawing, leaving out the constraints `analysis`
@@ -548,7 +575,7 @@ pub fn solve(
 
     // The core, numerically from the drawing.
     let core = Problem::new(system, &layout, &equations, construction.core.clone(), &x0, scale);
-    let mut iterations = core.run(&mut x, options).0;
+    let mut iterations = core.run(&mut x, options, 1.0).0;
     if core.worst(&x).is_some_and(|w| !(w.0 <= options.tolerance)) {
         // Which rigid cluster cannot be satisfied on its own: from the drawing, and from two
         // starts perturbed by a third of the model's size.
@@ -575,7 +602,7 @@ pub fn solve(
                         y[c] += scale * (rng.unit_f64() - 0.5) * 0.66;
                     }
                 }
-                let (k, ok) = part.run(&mut y, options);
+                let (k, ok) = part.run(&mut y, options, 1.0);
                 iterations += k;
                 let w = part.worst(&y).map_or(0.0, |w| w.0);
                 if ok || w <= options.tolerance {
@@ -601,7 +628,7 @@ pub fn solve(
             let rest: Vec<ConstraintIdx> =
                 construction.core.iter().copied().filter(|c| !excluded.contains(c)).collect();
             let again = Problem::new(system, &layout, &equations, rest, &x, scale);
-            iterations += again.run(&mut x, options).0;
+            iterations += again.run(&mut x, options, 1.0).0;
         }
     }
     if !construction.core.is_empty() {
@@ -620,16 +647,79 @@ pub fn solve(
         });
     }
 
-    // The points given by two distances, in closed form. A point that has no real place
-    // taints the points placed from it: when they fail in turn, they join its part.
+    // The points given by two distances, in closed form, each on the drawing's side. When a
+    // step finds no real candidate, the choice the drawing shows least clearly among the
+    // steps it depends on is reversed and the steps placed again (bounded backtracking, the
+    // ESM paper §4).
+    let placed_by: std::collections::HashMap<EntityIdx, usize> =
+        construction.steps.iter().enumerate().map(|(k, s)| (s.point, k)).collect();
+    let core_x = x.clone();
+    let mut flips = vec![false; construction.steps.len()];
+    let mut backtracked = 0;
+    let mut bound_hit = false;
+    loop {
+        x.copy_from_slice(&core_x);
+        let mut first_failure = None;
+        let mut confidence = vec![f64::INFINITY; construction.steps.len()];
+        for (k, step) in construction.steps.iter().enumerate() {
+            let placed = place(step, &layout, system, &x0, &x, flips[k]);
+            let col = layout.columns(step.point).start;
+            (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
+            if placed.candidates == 2 {
+                confidence[k] = placed.confidence;
+            }
+            if placed.chosen.is_none() && first_failure.is_none() {
+                first_failure = Some(k);
+            }
+        }
+        let Some(failed) = first_failure else { break };
+        // The steps the failed one depends on.
+        let mut ancestors = Vec::new();
+        let mut stack: Vec<usize> = vec![failed];
+        let mut seen = vec![false; construction.steps.len()];
+        while let Some(k) = stack.pop() {
+            for a in &construction.steps[k].anchors {
+                if let Some(&j) = placed_by.get(a)
+                    && !std::mem::replace(&mut seen[j], true)
+                {
+                    ancestors.push(j);
+                    stack.push(j);
+                }
+            }
+        }
+        let candidate = ancestors
+            .into_iter()
+            .filter(|&j| !flips[j] && confidence[j].is_finite())
+            .min_by(|&i, &j| confidence[i].total_cmp(&confidence[j]));
+        let Some(j) = candidate else { break };
+        if backtracked == BACKTRACK_BOUND {
+            bound_hit = true;
+            break;
+        }
+        flips[j] = true;
+        backtracked += 1;
+    }
+    x.copy_from_slice(&core_x);
+
+    // A point that has no real place taints the points placed from it: when they fail in
+    // turn, they join its part.
     let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
-    for step in &construction.steps {
-        let placed = place(step, &layout, system, &x0, &x);
+    for (k, step) in construction.steps.iter().enumerate() {
+        let placed = place(step, &layout, system, &x0, &x, flips[k]);
         let col = layout.columns(step.point).start;
         (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
         if placed.chosen.is_none() {
-            excluded.extend(step.constraints);
             let from = step.anchors.iter().find_map(|a| tainted.get(a).copied());
+            // The circles do not meet: no real solution when the anchors' distance is itself
+            // a dimension (a triangle whose inequality fails) or comes from a part that has
+            // none; otherwise the realization reached for the anchors may be the wrong one,
+            // and the step is a failure of the solve, not a proof.
+            let joined = solved.iter().any(|&c| {
+                let base = system.constraint_base_entities(c);
+                system.constraint(c).kind == gcs_model::ConstraintKind::Distance
+                    && base.len() == 2
+                    && step.anchors.iter().all(|a| base.contains(a))
+            });
             let k = match from {
                 Some(k) => {
                     let part = &mut no_solution[k];
@@ -638,14 +728,18 @@ pub fn solve(
                     part.entities.dedup();
                     part.constraints.extend(step.constraints);
                     part.constraints.sort();
-                    k
+                    Some(k)
                 }
-                None => {
+                None if joined => {
                     no_solution.push(triangle(system, &solved, step));
-                    no_solution.len() - 1
+                    Some(no_solution.len() - 1)
                 }
+                None => None,
             };
-            tainted.insert(step.point, k);
+            if let Some(k) = k {
+                excluded.extend(step.constraints);
+                tainted.insert(step.point, k);
+            }
         }
         plan.push(PlanStep {
             entities: vec![step.point],
@@ -725,6 +819,8 @@ pub fn solve(
         x,
         no_solution,
         plan,
+        backtracked,
+        bound_hit,
     })
 }
 
