@@ -138,7 +138,8 @@ enum Command {
     Generate {
         /// The family: `rectangles` (N fixed CAD rectangles), `laman` (a random rigid 2D bar
         /// framework on N points), `laman-sketch` (the same as a CAD program writes it:
-        /// 10-digit decimal coordinates, one redundant distance), `sphere` (a random
+        /// 10-digit decimal coordinates, one redundant distance), `laman-drawn` (a random
+        /// Laman realization drawn with 20% jitter, for the solver), `sphere` (a random
         /// triangulated sphere on N points, 3D).
         #[arg(value_enum)]
         family: Family,
@@ -159,6 +160,9 @@ enum Family {
     Laman,
     /// A random Laman framework with 10-digit decimal coordinates and one redundant distance.
     LamanSketch,
+    /// A random Laman realization drawn with 20% jitter (the solver benchmarks), one redundant
+    /// distance.
+    LamanDrawn,
     /// A random triangulated sphere as a 3D bar framework.
     Sphere,
 }
@@ -244,6 +248,7 @@ fn main() -> ExitCode {
                 Family::Rectangles => gcs_model::generate::rectangles(size),
                 Family::Laman => gcs_model::generate::laman(size, seed),
                 Family::LamanSketch => gcs_model::generate::laman_sketch(size, seed),
+                Family::LamanDrawn => gcs_model::generate::laman_drawn(size, seed, 0.2).0,
                 Family::Sphere => gcs_model::generate::triangulated_sphere(size, seed),
             };
             let mut out = batch::Out::new();

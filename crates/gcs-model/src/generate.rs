@@ -177,6 +177,107 @@ pub fn laman_sketch(n: usize, seed: u64) -> System {
     s
 }
 
+/// The triangles of a graph: the triples `a < b < c` joined pairwise, in order.
+pub fn triangles(n: usize, edges: &[(usize, usize)]) -> Vec<[usize; 3]> {
+    let mut adjacent: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for &(u, v) in edges {
+        if u < n && v < n && u != v {
+            adjacent[u].push(v);
+            adjacent[v].push(u);
+        }
+    }
+    for a in &mut adjacent {
+        a.sort_unstable();
+        a.dedup();
+    }
+    let mut out = Vec::new();
+    for a in 0..n {
+        for &b in adjacent[a].iter().filter(|&&b| b > a) {
+            for &c in adjacent[b].iter().filter(|&&c| c > b) {
+                if adjacent[a].binary_search(&c).is_ok() {
+                    out.push([a, b, c]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Twice the signed area of the triangle `a, b, c`.
+fn turn(a: &[f64], b: &[f64], c: &[f64]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// A random Laman sketch drawn roughly, for solvers (issue 13): a random realization of a
+/// Laman graph (Henneberg moves, half of them type II; points with 4-decimal coordinates in
+/// `[-1000, 1000]`, distances its measures rounded to 6 decimals, plus one redundant distance
+/// `extra` as in [`laman_sketch`]), drawn with every point moved by up to `jitter` times the
+/// mean distance in each coordinate — except that a point of a triangle the move would turn
+/// over has its move halved until no triangle turns (the drawing shows the realization's
+/// orientation, as a user's rough drawing does). Returns the system and the realization.
+pub fn laman_drawn(n: usize, seed: u64, jitter: f64) -> (System, Vec<[f64; 2]>) {
+    let n = n.max(3);
+    let mut rng = SplitMix64::new(seed);
+    let edges = laman_edges(n, 0.5, &mut rng);
+    let truth: Vec<[f64; 2]> = (0..n)
+        .map(|_| [0, 1].map(|_| rng.range(-10_000_000, 10_000_000) as f64 / 10_000.0))
+        .collect();
+    let length = |&(u, v): &(usize, usize)| {
+        ((truth[u][0] - truth[v][0]).powi(2) + (truth[u][1] - truth[v][1]).powi(2)).sqrt()
+    };
+    let mean = edges.iter().map(length).sum::<f64>() / edges.len().max(1) as f64;
+    let mut moves: Vec<[f64; 2]> =
+        (0..n).map(|_| [0, 1].map(|_| (2.0 * rng.unit_f64() - 1.0) * jitter * mean)).collect();
+    let tri = triangles(n, &edges);
+    for _ in 0..60 {
+        let drawn: Vec<[f64; 2]> =
+            (0..n).map(|i| [truth[i][0] + moves[i][0], truth[i][1] + moves[i][1]]).collect();
+        let mut flipped = vec![false; n];
+        for t in &tri {
+            let [a, b, c] = *t;
+            let before = turn(&truth[a], &truth[b], &truth[c]);
+            let after = turn(&drawn[a], &drawn[b], &drawn[c]);
+            if before * after <= 0.0 {
+                for v in [a, b, c] {
+                    flipped[v] = true;
+                }
+            }
+        }
+        if !flipped.contains(&true) {
+            break;
+        }
+        for (m, f) in moves.iter_mut().zip(&flipped) {
+            if *f {
+                *m = [m[0] / 2.0, m[1] / 2.0];
+            }
+        }
+    }
+    let decimal = |x: f64| BigRational::new(((x * 10_000.0).round() as i64).into(), 10_000.into());
+    // Distances to 6 decimals: a redundant one at its true value agrees within the solver's
+    // tolerance however long its circuit.
+    let dimension = |p: &[BigRational], q: &[BigRational]| {
+        use num_traits::ToPrimitive;
+        let d2: f64 =
+            p.iter().zip(q).map(|(a, b)| (a - b).to_f64().unwrap_or(0.0)).map(|x| x * x).sum();
+        BigRational::new(((d2.sqrt() * 1e6).round() as i64).into(), 1_000_000.into())
+    };
+    let exact = |p: &[f64; 2]| vec![decimal(p[0]), decimal(p[1])];
+    let mut b = SystemBuilder::new(format!("laman-drawn-{n}-{seed}"), Dim::Two);
+    for i in 0..n {
+        let drawn = [truth[i][0] + moves[i][0], truth[i][1] + moves[i][1]];
+        ok(b.point(&format!("p{i}"), Some(exact(&drawn))));
+    }
+    let joined = |v: usize| edges.iter().any(|&(a, b)| (a, b) == (0, v) || (a, b) == (v, 0));
+    let extra = (1..n).rev().find(|&v| !joined(v)).map(|v| (0, v));
+    for (k, &(u, v)) in edges.iter().chain(extra.iter()).enumerate() {
+        let value = dimension(&exact(&truth[u]), &exact(&truth[v]));
+        let id = if k < edges.len() { format!("d{k}") } else { "extra".to_owned() };
+        let (pu, pv) = (format!("p{u}"), format!("p{v}"));
+        ok(b.constraint(ConstraintKind::Distance, &id, &[&pu, &pv], Some(value)));
+    }
+    (b.build(), truth)
+}
+
 /// The edges of a random triangulated sphere on `n ≥ 4` vertices: from a tetrahedron, by
 /// stellar subdivision of a face (a vertex joined to its three corners) and edge splits (edge
 /// `ab` with faces `abc`, `abd` replaced by a vertex joined to `a, b, c, d`). A triangulated

@@ -44,7 +44,7 @@ pub use report::{
     ArithmeticName, BackendName, GlobalRigidityReport, ProofName, RedundantReport, Report, SCHEMA,
     WitnessName, failure_json, text, text_with_solution,
 };
-pub use solve::{CheckedReport, SolveReport};
+pub use solve::{CheckedReport, NoSolutionReport, PlanReport, SolveReport};
 pub use structural::{
     DmReport, DorSource, MethodReport, PartReport, Structural, StructuralReport, VerdictName,
 };

@@ -28,6 +28,30 @@ pub struct CheckedReport {
     pub spanning_group: Vec<String>,
 }
 
+/// A part without a real solution.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NoSolutionReport {
+    /// Its entities (ids).
+    pub entities: Vec<String>,
+    /// Its constraints (ids).
+    pub constraints: Vec<String>,
+}
+
+/// One step of the solve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PlanReport {
+    /// The entities it places (ids).
+    pub entities: Vec<String>,
+    /// `closed-form` or `newton`.
+    pub method: String,
+    /// The real candidates.
+    pub candidates: usize,
+    /// The candidate kept (`null` when there was none).
+    pub chosen: Option<usize>,
+    /// The constraints it satisfies (ids).
+    pub constraints: Vec<String>,
+}
+
 /// One model's solve report, in the order of its fields in the JSON line.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SolveReport {
@@ -49,6 +73,14 @@ pub struct SolveReport {
     pub conflicting: Vec<CheckedReport>,
     /// Every fully redundant constraint, measured at the solution.
     pub redundant: Vec<CheckedReport>,
+    /// The parts without a real solution.
+    pub no_solution: Vec<NoSolutionReport>,
+    /// The steps of the solve, in order.
+    pub plan: Vec<PlanReport>,
+    /// Closed-form choices reversed by backtracking.
+    pub backtracked: usize,
+    /// Whether backtracking hit its bound.
+    pub bound_hit: bool,
     /// When the solve failed: the constraint with the largest residual.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub worst: Option<String>,
@@ -140,6 +172,26 @@ impl SolveReport {
     ) -> SolveReport {
         let layout = Layout::new(system);
         let id = |c: gcs_model::ConstraintIdx| system.constraint(c).id.clone();
+        let eid = |e: &gcs_model::EntityIdx| system.entity(*e).id.clone();
+        let no_solution = solution
+            .no_solution
+            .iter()
+            .map(|n| NoSolutionReport {
+                entities: n.entities.iter().map(eid).collect(),
+                constraints: n.constraints.iter().map(|c| id(*c)).collect(),
+            })
+            .collect();
+        let plan = solution
+            .plan
+            .iter()
+            .map(|p| PlanReport {
+                entities: p.entities.iter().map(eid).collect(),
+                method: p.method.name().to_owned(),
+                candidates: p.candidates,
+                chosen: p.chosen,
+                constraints: p.constraints.iter().map(|c| id(*c)).collect(),
+            })
+            .collect();
         let redundant: Vec<CheckedReport> = solution
             .redundant
             .iter()
@@ -164,6 +216,10 @@ impl SolveReport {
                 .collect(),
             conflicting: redundant.iter().filter(|r| r.conflicting).cloned().collect(),
             redundant,
+            no_solution,
+            plan,
+            backtracked: solution.backtracked,
+            bound_hit: solution.bound_hit,
             worst: solution.worst.map(id),
             tolerance,
             scale: solution.scale,
@@ -190,11 +246,21 @@ impl SolveReport {
         let mut out = format!("{}: {}\n", self.file, self.model);
         let status = match self.status.as_str() {
             "solved" => "solved: every constraint holds".to_owned(),
+            "inconsistent" if self.conflicting.is_empty() => format!(
+                "INCONSISTENT: {} part{} without a real solution (the rest is solved)",
+                self.no_solution.len(),
+                if self.no_solution.len() == 1 { "" } else { "s" },
+            ),
             "inconsistent" => format!(
-                "INCONSISTENT: {} redundant constraint{} disagree{} with the others (the rest is solved)",
+                "INCONSISTENT: {} redundant constraint{} disagree{} with the others{} (the rest is solved)",
                 self.conflicting.len(),
                 if self.conflicting.len() == 1 { "" } else { "s" },
-                if self.conflicting.len() == 1 { "s" } else { "" }
+                if self.conflicting.len() == 1 { "s" } else { "" },
+                match self.no_solution.len() {
+                    0 => String::new(),
+                    1 => ", 1 part without a real solution".to_owned(),
+                    n => format!(", {n} parts without a real solution"),
+                }
             ),
             _ => format!(
                 "FAILED: the solver did not converge{}",
@@ -206,6 +272,27 @@ impl SolveReport {
             "  worst residual {:.1e} of the model's size {}; the drawing moved by {:.6} at most\n",
             self.max_residual, self.scale, self.moved
         ));
+        for n in &self.no_solution {
+            out.push_str(&format!(
+                "  no real solution: {} cannot all hold (entities {}): change a value\n",
+                n.constraints.join(", "),
+                n.entities.join(", ")
+            ));
+        }
+        let closed = self.plan.iter().filter(|p| p.method == "closed-form").count();
+        if closed > 0 {
+            out.push_str(&format!(
+                "  plan: {} step{}, {closed} of them a point by two distances in closed form, on the drawing's side\n",
+                self.plan.len(),
+                if self.plan.len() == 1 { "" } else { "s" },
+            ));
+        }
+        if self.bound_hit {
+            out.push_str(&format!(
+                "  backtracking stopped at its bound after reversing {} choices\n",
+                self.backtracked
+            ));
+        }
         for r in &self.redundant {
             if r.conflicting {
                 out.push_str(&format!(

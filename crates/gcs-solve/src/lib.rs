@@ -1,26 +1,42 @@
 //! Solving a constraint system at the user's values, and telling a redundant constraint that
 //! agrees with the others (consistent) from one that contradicts them (conflicting) — the
-//! survey's criterion (b), which needs the values.
+//! survey's criterion (b), which needs the values — and a part that has no real solution at
+//! all from a numerical failure.
 //!
-//! This first solver works on the whole system: damped Gauss–Newton (Levenberg–Marquardt,
-//! [`gcs_rank::levenberg_marquardt`]) from the drawing, on the residuals of
-//! [`gcs_jacobian::Equations`] — the same equations the analysis ranks, with the user's values
-//! for the dimensions. Small damped steps from the drawing keep its shape: an under-constrained
-//! sketch moves as little as it must, and the side of a tangency or the orientation of a
-//! triangle is the drawing's.
+//! The solve follows a constructive plan ([`plan`], after the ESM paper §3–4): the points of
+//! a plane sketch placed by two distances from points placed before them (Henneberg type I
+//! steps) are peeled off; what remains, the core, is solved by damped Gauss–Newton
+//! (Levenberg–Marquardt, [`gcs_rank::levenberg_marquardt`], sparse above a few hundred
+//! unknowns) from the drawing, on the residuals of [`gcs_jacobian::Equations`] — the same
+//! equations the analysis ranks, with the user's values for the dimensions; then the peeled
+//! points are placed in closed form ([`closed`]: circle–circle intersection, two candidates),
+//! each choosing the candidate on the drawing's side of its two anchors (the chirality of the
+//! sketch), ties (a drawing with the three points in line) by least displacement. Small damped
+//! steps from the drawing keep the core's shape: an under-constrained sketch moves as little
+//! as it must, and the side of a tangency or the orientation of a triangle is the drawing's.
 //!
 //! With the analysis of the system ([`gcs_analysis::analyze`]), the fully redundant
 //! constraints are left out of the solve (they add no condition a consistent system needs) and
 //! then measured at the solution: within the tolerance they are consistent, beyond it they
-//! conflict, with their spanning group (the constraints they conflict with). The solving along
-//! the DR-plan cluster by cluster, the choice among the solutions and the report of clusters
-//! without a real solution are not built yet.
+//! conflict, with their spanning group (the constraints they conflict with). A step whose two
+//! circles do not meet, or a rigid cluster of the analysis that the solver cannot satisfy on
+//! its own from the drawing nor from two perturbed starts, has no real solution: it is
+//! reported with its entities and constraints and left at its least-squares point, and the
+//! rest is solved without it.
+//!
+//! Not built yet: the full DR-plan recursion (a cluster's children as rigid bodies), closed
+//! forms other than a point by two distances, and backtracking over the choices.
 //!
 //! A library: it never panics on input and never prints.
 
+pub mod closed;
+pub mod plan;
+
+use std::cell::RefCell;
+
 use gcs_analysis::Analysis;
 use gcs_jacobian::{Equations, Layout};
-use gcs_model::{ConstraintIdx, System};
+use gcs_model::{ConstraintIdx, EntityIdx, System};
 use gcs_rank::{BigRational, LmOptions, Residuals, SparseRow, levenberg_marquardt};
 use num_traits::ToPrimitive;
 
@@ -33,13 +49,21 @@ pub struct SolveOptions {
     pub tolerance: f64,
     /// The most Gauss–Newton steps.
     pub max_iterations: usize,
-    /// Larger systems are not attempted (the steps are dense).
+    /// Larger systems are not attempted.
     pub max_unknowns: usize,
+    /// Whether to place the points given by two distances in closed form ([`plan`]); without
+    /// it, the whole system is solved numerically.
+    pub constructive: bool,
 }
 
 impl Default for SolveOptions {
     fn default() -> Self {
-        SolveOptions { tolerance: 1e-9, max_iterations: 500, max_unknowns: 3_000 }
+        SolveOptions {
+            tolerance: 1e-9,
+            max_iterations: 500,
+            max_unknowns: 1_000_000,
+            constructive: true,
+        }
     }
 }
 
@@ -49,7 +73,8 @@ pub enum Status {
     /// Every constraint holds at the solution.
     Solved,
     /// The constraints were solved without the redundant ones, and some of those do not hold
-    /// there: they conflict.
+    /// there: they conflict; or a part has no real solution ([`Solution::no_solution`]). The
+    /// rest is solved.
     Inconsistent,
     /// The numerics did not reach the tolerance: see [`Solution::worst`].
     Failed,
@@ -106,15 +131,67 @@ pub struct Solution {
     pub iterations: usize,
     /// The model's size: the largest coordinate of the drawing (at least 1).
     pub scale: f64,
+    /// The parts without a real solution, left at their least-squares point.
+    pub no_solution: Vec<NoSolution>,
+    /// The steps taken, in order.
+    pub plan: Vec<PlanStep>,
+    /// How many closed-form choices backtracking reversed (against the drawing's side).
+    pub backtracked: usize,
+    /// Whether backtracking stopped at its bound with a step still without a candidate.
+    pub bound_hit: bool,
+}
+
+/// A part of the system that has no real solution (with the choices made for the rest).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NoSolution {
+    /// Its entities: the rigid cluster of the analysis it lies in (or, outside any, the
+    /// entities of its constraints), in file order.
+    pub entities: Vec<EntityIdx>,
+    /// Its constraints, in file order.
+    pub constraints: Vec<ConstraintIdx>,
+}
+
+/// How a step of the plan was solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Written down directly: the intersection of two circles.
+    ClosedForm,
+    /// Damped Gauss–Newton from the drawing.
+    Newton,
+}
+
+impl Method {
+    /// The report name: `closed-form`, `newton`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::ClosedForm => "closed-form",
+            Method::Newton => "newton",
+        }
+    }
+}
+
+/// One step of the solve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanStep {
+    /// The entities the step places.
+    pub entities: Vec<EntityIdx>,
+    /// The constraints it satisfies.
+    pub constraints: Vec<ConstraintIdx>,
+    /// How.
+    pub method: Method,
+    /// The real candidates (a closed-form step: 2, 1 when tangent, 0 when there is none; a
+    /// numerical step: 1, the one reached from the drawing).
+    pub candidates: usize,
+    /// The candidate kept (`None` when there was none): closed-form candidate 0 lies to the
+    /// left of the directed line from the first anchor to the second, 1 to the right.
+    pub chosen: Option<usize>,
 }
 
 /// Why a system was not solved.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum SolveError {
     /// Too many unknowns for the dense solver.
-    #[error(
-        "{unknowns} unknowns: more than the dense solver takes ({max}); the solver along the decomposition is not built yet"
-    )]
+    #[error("{unknowns} unknowns: more than the solver is allowed ({max})")]
     TooLarge {
         /// The unknowns.
         unknowns: usize,
@@ -123,15 +200,27 @@ pub enum SolveError {
     },
 }
 
-/// The residuals the solver minimises: every constraint not left out, the metric ones against
-/// their values, each scaled to be relative to the model's size, and the internal relations
-/// (not the normalisations of homogeneous coordinates, which the steps leave free).
+/// The residuals the solver minimises: the constraints of one step, the metric ones against
+/// their values, each scaled to be relative to the model's size, and the internal relations of
+/// their entities (not the normalisations of homogeneous coordinates, which the steps leave
+/// free); over the columns of those entities, the rest of the configuration held where it is.
 struct Problem<'s> {
     system: &'s System,
     layout: &'s Layout,
-    equations: Equations<'s>,
-    solved: Vec<ConstraintIdx>,
+    equations: &'s Equations<'s>,
+    constraints: Vec<ConstraintIdx>,
+    /// Entities whose internal relation is a residual.
+    internal: Vec<EntityIdx>,
+    /// The unknowns: columns of the layout.
+    columns: Vec<usize>,
+    /// Each layout column's place among the unknowns (`usize::MAX`: held).
+    local: Vec<usize>,
+    /// The whole configuration, the unknowns overwritten at each evaluation.
+    full: RefCell<Vec<f64>>,
     scale: f64,
+    /// The homotopy parameter (1: the system itself) and the residuals at its start.
+    t: std::cell::Cell<f64>,
+    offset: RefCell<Vec<f64>>,
 }
 
 /// What a residual of constraint `c` is measured against: the model's size for a length, 180°
@@ -147,50 +236,193 @@ fn unit(system: &System, c: ConstraintIdx, scale: f64) -> f64 {
     }
 }
 
-impl Problem<'_> {
-    /// The residual of one constraint, relative (over its [`unit`]). `None` for a metric
-    /// constraint without a value (nothing to impose).
-    fn residual(&self, c: ConstraintIdx, x: &[f64]) -> Option<(Vec<f64>, Vec<SparseRow<f64>>)> {
-        let r = self.equations.residual(c, x)?;
-        let unit = unit(self.system, c, self.scale);
-        let values = r.values.iter().map(|v| v / unit).collect();
-        let rows = r
-            .rows
-            .iter()
-            .map(|row| {
-                SparseRow::from_entries(row.entries().iter().map(|(c, v)| (*c, v / unit)).collect())
-            })
-            .collect();
-        Some((values, rows))
+/// The residual of one constraint at the whole configuration `x`, relative (over its
+/// [`unit`]), as its largest value. `None` for a metric constraint without a value.
+fn relative(
+    system: &System,
+    equations: &Equations<'_>,
+    c: ConstraintIdx,
+    x: &[f64],
+    scale: f64,
+) -> Option<f64> {
+    let r = equations.residual(c, x)?;
+    let unit = unit(system, c, scale);
+    Some(r.values.iter().fold(0.0f64, |m, v| m.max((v / unit).abs())))
+}
+
+impl<'s> Problem<'s> {
+    /// The problem of `constraints` over the columns of their entities, at `x`.
+    fn new(
+        system: &'s System,
+        layout: &'s Layout,
+        equations: &'s Equations<'s>,
+        constraints: Vec<ConstraintIdx>,
+        x: &[f64],
+        scale: f64,
+    ) -> Self {
+        let mut seen = vec![false; system.entities().len()];
+        let mut entities = Vec::new();
+        for &c in &constraints {
+            for e in system.constraint_base_entities(c) {
+                if !std::mem::replace(&mut seen[e.index()], true) {
+                    entities.push(e);
+                }
+            }
+        }
+        entities.sort();
+        let mut local = vec![usize::MAX; layout.ncols()];
+        let mut columns = Vec::new();
+        let mut internal = Vec::new();
+        for &e in &entities {
+            let Some(repr) = layout.repr(e) else { continue };
+            for col in layout.columns(e) {
+                local[col] = columns.len();
+                columns.push(col);
+            }
+            if repr.internal_rows() > usize::from(repr.homogeneous()) {
+                internal.push(e);
+            }
+        }
+        Problem {
+            system,
+            layout,
+            equations,
+            constraints,
+            internal,
+            columns,
+            local,
+            full: RefCell::new(x.to_vec()),
+            scale,
+            t: std::cell::Cell::new(1.0),
+            offset: RefCell::new(Vec::new()),
+        }
+    }
+
+    /// The unknowns' values in `x`.
+    fn gather(&self, x: &[f64]) -> Vec<f64> {
+        self.columns.iter().map(|&c| x[c]).collect()
+    }
+
+    /// Writes the unknowns' values into `x`.
+    fn scatter(&self, unknowns: &[f64], x: &mut [f64]) {
+        for (&c, v) in self.columns.iter().zip(unknowns) {
+            x[c] = *v;
+        }
+    }
+
+    /// A row over the layout's columns, scaled and over the unknowns.
+    fn localise(&self, row: &SparseRow<f64>, unit: f64) -> SparseRow<f64> {
+        SparseRow::from_entries(
+            row.entries()
+                .iter()
+                .filter(|(c, _)| self.local[*c] != usize::MAX)
+                .map(|(c, v)| (self.local[*c], v / unit))
+                .collect(),
+        )
+    }
+
+    /// Damped Gauss–Newton from `x` (the whole configuration), updated in place, along the
+    /// Newton homotopy `r(y) − (1 − t)·r(x)` from `t = 0` (the start, where it holds) to
+    /// `t = 1` (the system): first in one step; where a step does not converge, in halved
+    /// steps (down to 1/1024), each started from the last point reached. Following the path
+    /// keeps the drawing's branch (the orientation of its triangles) where a direct solve
+    /// from a rough drawing falls into another solution or a local minimum. The steps taken
+    /// and whether it converged.
+    fn run(&self, x: &mut [f64], options: &SolveOptions, first_step: f64) -> (usize, bool) {
+        if self.columns.is_empty() {
+            return (0, true);
+        }
+        *self.full.borrow_mut() = x.to_vec();
+        let mut y = self.gather(x);
+        self.t.set(1.0);
+        let offset = self.evaluate(&y).0;
+        // A rough start (a residual beyond 1% of the model's size) takes `first_step` first.
+        let rough = offset.iter().any(|v| !(v.abs() <= 1e-2));
+        *self.offset.borrow_mut() = offset;
+        let (mut t, mut dt, mut iterations) =
+            (0.0f64, if rough { first_step } else { 1.0f64 }, 0);
+        let converged = loop {
+            let target = if t + dt >= 1.0 - 1e-12 { 1.0 } else { t + dt };
+            let last = target == 1.0;
+            self.t.set(target);
+            let lm = LmOptions {
+                tolerance: options.tolerance * if last { 1e-5 } else { 1e-3 },
+                max_iterations: if last && dt < 1.0 {
+                    options.max_iterations
+                } else {
+                    options.max_iterations.min(60)
+                },
+                max_unknowns: usize::MAX,
+                ..LmOptions::default()
+            };
+            let Some(outcome) = levenberg_marquardt(self, &y, &lm) else { break false };
+            iterations += outcome.iterations;
+            if outcome.converged {
+                y = outcome.x;
+                t = target;
+                if last {
+                    break true;
+                }
+                dt = (dt * 2.0).min(1.0);
+            } else if dt > 1.0 / 1024.0 {
+                dt /= 2.0;
+            } else {
+                if last {
+                    y = outcome.x;
+                }
+                break false;
+            }
+        };
+        self.t.set(1.0);
+        self.scatter(&y, x);
+        (iterations, converged)
+    }
+
+    /// The largest relative residual of the constraints at `x`, with its constraint.
+    fn worst(&self, x: &[f64]) -> Option<(f64, ConstraintIdx)> {
+        let mut worst: Option<(f64, ConstraintIdx)> = None;
+        for &c in &self.constraints {
+            if let Some(m) = relative(self.system, self.equations, c, x, self.scale)
+                && worst.is_none_or(|(w, _)| !(m <= w))
+            {
+                worst = Some((m, c));
+            }
+        }
+        worst
     }
 }
 
 impl Residuals for Problem<'_> {
     fn unknowns(&self) -> usize {
-        self.layout.ncols()
+        self.columns.len()
     }
 
-    fn evaluate(&self, x: &[f64]) -> (Vec<f64>, Vec<SparseRow<f64>>) {
+    fn evaluate(&self, unknowns: &[f64]) -> (Vec<f64>, Vec<SparseRow<f64>>) {
+        let mut full = self.full.borrow_mut();
+        self.scatter(unknowns, &mut full);
         let mut values = Vec::new();
         let mut rows = Vec::new();
-        for &c in &self.solved {
-            if let Some((v, r)) = self.residual(c, x) {
-                values.extend(v);
-                rows.extend(r);
+        for &c in &self.constraints {
+            if let Some(r) = self.equations.residual(c, &full) {
+                let unit = unit(self.system, c, self.scale);
+                values.extend(r.values.iter().map(|v| v / unit));
+                rows.extend(r.rows.iter().map(|row| self.localise(row, unit)));
             }
         }
-        for e in self.system.entity_indices() {
-            let Some(repr) = self.layout.repr(e) else { continue };
-            if repr.internal_rows() > usize::from(repr.homogeneous()) {
-                let (v, r) = self.equations.internal_residuals(e, x);
-                let unit = self.scale * self.scale;
-                // The first internal row is the relation (the normalisation, if any, is last).
-                if let (Some(value), Some(row)) = (v.first(), r.first()) {
-                    values.push(value / unit);
-                    rows.push(SparseRow::from_entries(
-                        row.entries().iter().map(|(c, v)| (*c, v / unit)).collect(),
-                    ));
-                }
+        for &e in &self.internal {
+            let (v, r) = self.equations.internal_residuals(e, &full);
+            let unit = self.scale * self.scale;
+            // The first internal row is the relation (the normalisation, if any, is last).
+            if let (Some(value), Some(row)) = (v.first(), r.first()) {
+                values.push(value / unit);
+                rows.push(self.localise(row, unit));
+            }
+        }
+        let _ = self.layout;
+        let lag = 1.0 - self.t.get();
+        if lag != 0.0 {
+            for (v, o) in values.iter_mut().zip(self.offset.borrow().iter()) {
+                *v -= lag * o;
             }
         }
         (values, rows)
@@ -224,8 +456,92 @@ fn start(system: &System, layout: &Layout, analysis: &Analysis) -> Vec<f64> {
     x
 }
 
+/// The drawn position of a 2D point in `x`.
+fn at(layout: &Layout, x: &[f64], p: EntityIdx) -> [f64; 2] {
+    let c = layout.columns(p).start;
+    [x.get(c).copied().unwrap_or(0.0), x.get(c + 1).copied().unwrap_or(0.0)]
+}
+
+/// The value of a dimension as a double.
+fn value(system: &System, c: ConstraintIdx) -> f64 {
+    system.constraint(c).value.as_ref().and_then(ToPrimitive::to_f64).unwrap_or(f64::NAN)
+}
+
+/// The part without a real solution of a closed-form step whose circles do not meet: its
+/// point, its anchors and the constraints among the three (those that fix the anchors'
+/// distance included).
+fn triangle(system: &System, solved: &[ConstraintIdx], step: &plan::Step) -> NoSolution {
+    let mut entities = vec![step.anchors[0], step.anchors[1], step.point];
+    entities.sort();
+    let constraints = solved
+        .iter()
+        .copied()
+        .filter(|&c| {
+            let base = system.constraint_base_entities(c);
+            !base.is_empty() && base.iter().all(|e| entities.contains(e))
+        })
+        .collect();
+    NoSolution { entities, constraints }
+}
+
+/// Places the point of a closed-form step: the real candidates, the one on the drawing's side
+/// of the anchors (ties by least displacement from the drawing); `None` when there is none.
+fn place(
+    step: &plan::Step,
+    layout: &Layout,
+    system: &System,
+    x0: &[f64],
+    x: &[f64],
+    flip: bool,
+) -> Placed {
+    let [a, b] = step.anchors.map(|e| at(layout, x, e));
+    let [ra, rb] = step.constraints.map(|c| value(system, c));
+    let candidates = closed::circle_circle(a, ra, b, rb, 1e-12).candidates();
+    let drawn = at(layout, x0, step.point);
+    let [a0, b0] = step.anchors.map(|e| at(layout, x0, e));
+    let side = closed::orientation(a0, b0, drawn);
+    let norm = |u: [f64; 2], v: [f64; 2]| ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2)).sqrt();
+    let flat = side.abs() <= 1e-9 * norm(a0, b0) * norm(a0, drawn);
+    let chosen = match candidates.len() {
+        0 => None,
+        1 => Some(0),
+        _ if !flat => Some(if side > 0.0 { 0 } else { 1 }),
+        _ => Some(if norm(candidates[0], drawn) <= norm(candidates[1], drawn) { 0 } else { 1 }),
+    };
+    // Backtracking takes the other candidate.
+    let chosen = if flip && candidates.len() == 2 { chosen.map(|k| 1 - k) } else { chosen };
+    Placed {
+        at: chosen.map_or_else(|| closed::nearest_to_both(a, ra, b, rb), |k| candidates[k]),
+        candidates: candidates.len(),
+        chosen,
+        confidence: if norm(a0, b0) * norm(a0, drawn) > 0.0 {
+            side.abs() / (norm(a0, b0) * norm(a0, drawn))
+        } else {
+            0.0
+        },
+    }
+}
+
+/// The most closed-form choices backtracking may change before giving up.
+const BACKTRACK_BOUND: usize = 32;
+
+/// The most unknowns of a cluster that the solver, failing to satisfy it from the drawing and
+/// from two other starts, reports as having no real solution.
+const SMALL_CLUSTER: usize = 24;
+
+/// Where a closed-form step put its point, and among how many candidates.
+struct Placed {
+    at: [f64; 2],
+    candidates: usize,
+    chosen: Option<usize>,
+    /// How clearly the drawing shows the side: the sine of the drawn angle at the first
+    /// anchor (0: in line).
+    confidence: f64,
+}
+
 /// Solves `system` at its values, from its drawing, leaving out the constraints `analysis`
-/// finds fully redundant and measuring them at the solution.
+/// finds fully redundant and measuring them at the solution: the core numerically, then the
+/// points given by two distances in closed form (see the crate documentation).
 ///
 /// # Errors
 /// [`SolveError::TooLarge`] beyond [`SolveOptions::max_unknowns`].
@@ -235,6 +551,9 @@ pub fn solve(
     options: &SolveOptions,
 ) -> Result<Solution, SolveError> {
     let layout = Layout::new(system);
+    if layout.ncols() > options.max_unknowns {
+        return Err(SolveError::TooLarge { unknowns: layout.ncols(), max: options.max_unknowns });
+    }
     let x0 = start(system, &layout, analysis);
     let scale = x0.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     let fully: Vec<&gcs_analysis::Redundancy> =
@@ -244,25 +563,200 @@ pub fn solve(
     let solved: Vec<ConstraintIdx> =
         system.constraint_indices().filter(|c| !left_out.contains(c)).collect();
     let equations = Equations::new(system, &layout).with_branches_at(&x0);
-    let problem = Problem { system, layout: &layout, equations, solved, scale };
-    let lm = LmOptions {
-        tolerance: options.tolerance * 1e-5,
-        max_iterations: options.max_iterations,
-        max_unknowns: options.max_unknowns,
-        ..LmOptions::default()
+    let construction = if options.constructive {
+        plan::construction(system, &solved)
+    } else {
+        plan::Construction { steps: Vec::new(), core: solved.clone() }
     };
-    let Some(outcome) = levenberg_marquardt(&problem, &x0, &lm) else {
-        return Err(SolveError::TooLarge { unknowns: layout.ncols(), max: options.max_unknowns });
-    };
-    let x = outcome.x;
-    // The worst constraint solved.
-    let mut worst: Option<(f64, ConstraintIdx)> = None;
-    for &c in &problem.solved {
-        if let Some((v, _)) = problem.residual(c, &x) {
-            let m = v.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-            if worst.is_none_or(|(w, _)| m > w) {
-                worst = Some((m, c));
+    let mut x = x0.clone();
+    let mut no_solution: Vec<NoSolution> = Vec::new();
+    let mut excluded: std::collections::HashSet<ConstraintIdx> = Default::default();
+    let mut plan = Vec::new();
+
+    // The core, numerically from the drawing.
+    let core = Problem::new(system, &layout, &equations, construction.core.clone(), &x0, scale);
+    let mut iterations = core.run(&mut x, options, 1.0).0;
+    if core.worst(&x).is_some_and(|w| !(w.0 <= options.tolerance)) {
+        // Which rigid cluster cannot be satisfied on its own: from the drawing, and from two
+        // starts perturbed by a third of the model's size.
+        let in_core: std::collections::HashSet<ConstraintIdx> =
+            construction.core.iter().copied().collect();
+        let mut rng = gcs_model::rng::SplitMix64::new(0x5eed);
+        for cluster in &analysis.clusters {
+            let cs: Vec<ConstraintIdx> =
+                cluster.constraints.iter().copied().filter(|c| in_core.contains(c)).collect();
+            if cs.is_empty() {
+                continue;
             }
+            let part = Problem::new(system, &layout, &equations, cs.clone(), &x0, scale);
+            // A large cluster the solver misses may still have a solution: not claimed.
+            if part.columns.len() > SMALL_CLUSTER {
+                continue;
+            }
+            let mut best: Option<(f64, Vec<f64>)> = None;
+            let mut solvable = false;
+            for attempt in 0..3 {
+                let mut y = x0.clone();
+                if attempt > 0 {
+                    for &c in &part.columns {
+                        y[c] += scale * (rng.unit_f64() - 0.5) * 0.66;
+                    }
+                }
+                let (k, ok) = part.run(&mut y, options, 1.0);
+                iterations += k;
+                let w = part.worst(&y).map_or(0.0, |w| w.0);
+                if ok || w <= options.tolerance {
+                    solvable = true;
+                    break;
+                }
+                if best.as_ref().is_none_or(|(b, _)| w < *b) {
+                    best = Some((w, part.gather(&y)));
+                }
+            }
+            if !solvable {
+                if let Some((_, y)) = best {
+                    part.scatter(&y, &mut x);
+                }
+                excluded.extend(cs.iter().copied());
+                no_solution.push(NoSolution {
+                    entities: cluster.entities.clone(),
+                    constraints: cluster.constraints.clone(),
+                });
+            }
+        }
+        if !no_solution.is_empty() {
+            let rest: Vec<ConstraintIdx> =
+                construction.core.iter().copied().filter(|c| !excluded.contains(c)).collect();
+            let again = Problem::new(system, &layout, &equations, rest, &x, scale);
+            iterations += again.run(&mut x, options, 1.0).0;
+        }
+    }
+    if !construction.core.is_empty() {
+        let mut entities: Vec<EntityIdx> = Vec::new();
+        for &c in &construction.core {
+            entities.extend(system.constraint_base_entities(c));
+        }
+        entities.sort();
+        entities.dedup();
+        plan.push(PlanStep {
+            entities,
+            constraints: construction.core.clone(),
+            method: Method::Newton,
+            candidates: 1,
+            chosen: Some(0),
+        });
+    }
+
+    // The points given by two distances, in closed form, each on the drawing's side. When a
+    // step finds no real candidate, the choice the drawing shows least clearly among the
+    // steps it depends on is reversed and the steps placed again (bounded backtracking, the
+    // ESM paper §4).
+    let placed_by: std::collections::HashMap<EntityIdx, usize> =
+        construction.steps.iter().enumerate().map(|(k, s)| (s.point, k)).collect();
+    let core_x = x.clone();
+    let mut flips = vec![false; construction.steps.len()];
+    let mut backtracked = 0;
+    let mut bound_hit = false;
+    loop {
+        x.copy_from_slice(&core_x);
+        let mut first_failure = None;
+        let mut confidence = vec![f64::INFINITY; construction.steps.len()];
+        for (k, step) in construction.steps.iter().enumerate() {
+            let placed = place(step, &layout, system, &x0, &x, flips[k]);
+            let col = layout.columns(step.point).start;
+            (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
+            if placed.candidates == 2 {
+                confidence[k] = placed.confidence;
+            }
+            if placed.chosen.is_none() && first_failure.is_none() {
+                first_failure = Some(k);
+            }
+        }
+        let Some(failed) = first_failure else { break };
+        // The steps the failed one depends on.
+        let mut ancestors = Vec::new();
+        let mut stack: Vec<usize> = vec![failed];
+        let mut seen = vec![false; construction.steps.len()];
+        while let Some(k) = stack.pop() {
+            for a in &construction.steps[k].anchors {
+                if let Some(&j) = placed_by.get(a)
+                    && !std::mem::replace(&mut seen[j], true)
+                {
+                    ancestors.push(j);
+                    stack.push(j);
+                }
+            }
+        }
+        let candidate = ancestors
+            .into_iter()
+            .filter(|&j| !flips[j] && confidence[j].is_finite())
+            .min_by(|&i, &j| confidence[i].total_cmp(&confidence[j]));
+        let Some(j) = candidate else { break };
+        if backtracked == BACKTRACK_BOUND {
+            bound_hit = true;
+            break;
+        }
+        flips[j] = true;
+        backtracked += 1;
+    }
+    x.copy_from_slice(&core_x);
+
+    // A point that has no real place taints the points placed from it: when they fail in
+    // turn, they join its part.
+    let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
+    for (k, step) in construction.steps.iter().enumerate() {
+        let placed = place(step, &layout, system, &x0, &x, flips[k]);
+        let col = layout.columns(step.point).start;
+        (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
+        if placed.chosen.is_none() {
+            let from = step.anchors.iter().find_map(|a| tainted.get(a).copied());
+            // The circles do not meet: no real solution when the anchors' distance is itself
+            // a dimension (a triangle whose inequality fails) or comes from a part that has
+            // none; otherwise the realization reached for the anchors may be the wrong one,
+            // and the step is a failure of the solve, not a proof.
+            let joined = solved.iter().any(|&c| {
+                let base = system.constraint_base_entities(c);
+                system.constraint(c).kind == gcs_model::ConstraintKind::Distance
+                    && base.len() == 2
+                    && step.anchors.iter().all(|a| base.contains(a))
+            });
+            let k = match from {
+                Some(k) => {
+                    let part = &mut no_solution[k];
+                    part.entities.push(step.point);
+                    part.entities.sort();
+                    part.entities.dedup();
+                    part.constraints.extend(step.constraints);
+                    part.constraints.sort();
+                    Some(k)
+                }
+                None if joined => {
+                    no_solution.push(triangle(system, &solved, step));
+                    Some(no_solution.len() - 1)
+                }
+                None => None,
+            };
+            if let Some(k) = k {
+                excluded.extend(step.constraints);
+                tainted.insert(step.point, k);
+            }
+        }
+        plan.push(PlanStep {
+            entities: vec![step.point],
+            constraints: step.constraints.to_vec(),
+            method: Method::ClosedForm,
+            candidates: placed.candidates,
+            chosen: placed.chosen,
+        });
+    }
+
+    // The worst constraint solved (those without a real solution aside).
+    let mut worst: Option<(f64, ConstraintIdx)> = None;
+    for &c in solved.iter().filter(|c| !excluded.contains(c)) {
+        if let Some(m) = relative(system, &equations, c, &x, scale)
+            && worst.is_none_or(|(w, _)| !(m <= w))
+        {
+            worst = Some((m, c));
         }
     }
     let max_residual = worst.map_or(0.0, |w| w.0);
@@ -271,7 +765,7 @@ pub fn solve(
         .iter()
         .map(|r| {
             let c = r.constraint;
-            let residual = problem.equations.residual(c, &x).map_or(0.0, |res| {
+            let residual = equations.residual(c, &x).map_or(0.0, |res| {
                 res.values.iter().fold(0.0f64, |m, v| if v.abs() > m.abs() { *v } else { m })
             });
             // The written precision of every value in the dependency, in the units of this
@@ -299,7 +793,7 @@ pub fn solve(
         .collect();
     let status = if !converged {
         Status::Failed
-    } else if redundant.iter().any(|r| r.conflicting) {
+    } else if redundant.iter().any(|r| r.conflicting) || !no_solution.is_empty() {
         Status::Inconsistent
     } else {
         Status::Solved
@@ -320,9 +814,13 @@ pub fn solve(
         max_residual,
         moved,
         redundant,
-        iterations: outcome.iterations,
+        iterations,
         scale,
         x,
+        no_solution,
+        plan,
+        backtracked,
+        bound_hit,
     })
 }
 
@@ -354,4 +852,49 @@ pub fn solved_system(system: &System, solution: &Solution) -> System {
         let _ = out.set_sketch(e, geometry);
     }
     out
+}
+
+/// The triangles of distances of a plane system (three points joined pairwise by
+/// `Distance`s) whose orientation at `x` is the drawing's: `(kept, triangles)`.
+pub fn orientation_kept(system: &System, x: &[f64]) -> (usize, usize) {
+    let layout = Layout::new(system);
+    let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
+    let mut points: Vec<EntityIdx> = Vec::new();
+    let mut edges = Vec::new();
+    for c in system.constraint_indices() {
+        let constraint = system.constraint(c);
+        if constraint.kind != gcs_model::ConstraintKind::Distance {
+            continue;
+        }
+        let base = system.constraint_base_entities(c);
+        let [p, q] = base.as_slice() else { continue };
+        let mut id = |e: EntityIdx| {
+            *index.entry(e).or_insert_with(|| {
+                points.push(e);
+                points.len() - 1
+            })
+        };
+        edges.push((id(*p), id(*q)));
+    }
+    let drawn: Vec<f64> = {
+        let mut d = vec![0.0; layout.ncols()];
+        for e in system.entity_indices() {
+            if let Some(coords) = gcs_jacobian::sketch::sketch_coords_in::<f64>(system, e) {
+                for (col, v) in layout.columns(e).zip(coords) {
+                    d[col] = v;
+                }
+            }
+        }
+        d
+    };
+    let triangles = gcs_model::generate::triangles(points.len(), &edges);
+    let kept = triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|i| points[i]);
+            let turn = |y: &[f64]| closed::orientation(at(&layout, y, a), at(&layout, y, b), at(&layout, y, c));
+            turn(&drawn) * turn(x) > 0.0
+        })
+        .count();
+    (kept, triangles.len())
 }

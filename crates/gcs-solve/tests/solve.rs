@@ -130,3 +130,108 @@ fn a_modular_witness_is_no_real_start() {
         assert!(r.allowance < 1.0, "{r:?}");
     }
 }
+
+fn ids(s: &System, c: &[gcs_model::ConstraintIdx]) -> Vec<String> {
+    c.iter().map(|c| s.constraint(*c).id.clone()).collect()
+}
+
+/// 10, 10, 50 around a triangle has no real solution: reported as such with the triangle's
+/// points and distances, not as a numerical failure; the point hanging off it by two more
+/// distances is still placed, and a separate triangle is solved.
+#[test]
+fn a_broken_triangle_inequality_is_no_real_solution() {
+    let s = model(
+        r#"System(name: "t", dim: 2, entities: [Point(id: "a", at: [0, 0]),
+        Point(id: "b", at: [40, 0]), Point(id: "c", at: [20, 8]),
+        Point(id: "u", at: [100, 0]), Point(id: "v", at: [104, 0]), Point(id: "w", at: [100, 3])],
+        constraints: [Distance(id: "ab", a: "a", b: "b", value: 50),
+        Distance(id: "bc", a: "b", b: "c", value: 10), Distance(id: "ca", a: "c", b: "a", value: 10),
+        Distance(id: "uv", a: "u", b: "v", value: 4), Distance(id: "vw", a: "v", b: "w", value: 5),
+        Distance(id: "wu", a: "w", b: "u", value: 3)])"#,
+    );
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Inconsistent, "{sol:?}");
+    let [part] = sol.no_solution.as_slice() else { panic!("{:?}", sol.no_solution) };
+    let names: Vec<&str> = part.entities.iter().map(|e| s.entity(*e).id.as_str()).collect();
+    assert_eq!(names, ["a", "b", "c"]);
+    assert_eq!(ids(&s, &part.constraints), ["ab", "bc", "ca"]);
+    assert!(sol.max_residual <= 1e-9, "the rest is solved: {}", sol.max_residual);
+    let (u, v, w) = (point(&s, &sol.x, "u"), point(&s, &sol.x, "v"), point(&s, &sol.x, "w"));
+    let d = |p: (f64, f64), q: (f64, f64)| ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt();
+    assert!((d(u, v) - 4.0).abs() < 1e-9 && (d(v, w) - 5.0).abs() < 1e-9);
+    let failed: Vec<_> = sol.plan.iter().filter(|p| p.chosen.is_none()).collect();
+    assert_eq!(failed.len(), 1);
+    assert_eq!(failed[0].candidates, 0);
+}
+
+/// Three lines at pairwise angles 60, 60 and 70 degrees: the third angle is redundant with the
+/// other two and cannot hold — a conflict, measured, not a numerical failure.
+#[test]
+fn three_lines_at_60_60_70_conflict() {
+    let s = model(
+        r#"System(name: "l", dim: 2, entities: [Line(id: "l1", at: [[0, 0], [10, 0]]),
+        Line(id: "l2", at: [[0, 0], [5, 8]]), Line(id: "l3", at: [[0, 0], [-5, 8]])],
+        constraints: [Angle(id: "a12", a: "l1", b: "l2", value: 60),
+        Angle(id: "a23", a: "l2", b: "l3", value: 60), Angle(id: "a13", a: "l1", b: "l3", value: 70)])"#,
+    );
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Inconsistent, "{sol:?}");
+    let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+    assert!(r.conflicting && r.residual.abs() > 1.0, "{r:?}");
+    assert_eq!(r.spanning_group.len(), 2);
+}
+
+/// Random Laman sketches built from a known realization, drawn with 20% jitter (no triangle
+/// turned over): most solve (a realization where every step finds its point), and every one
+/// that solves keeps the drawing's orientation of every triangle; none is claimed to have no
+/// real solution (its distances have one). The points placed by two distances are placed in
+/// closed form. Not every sketch solves: the core may reach another realization than the
+/// drawn one (no backtracking over the core's realizations yet).
+#[test]
+fn jittered_laman_sketches_solve_keeping_their_orientation() {
+    let (mut closed, mut solved) = (0, 0);
+    for seed in 1..=12 {
+        let (s, _) = gcs_model::generate::laman_drawn(16, seed, 0.2);
+        let sol = run(&s);
+        assert!(sol.no_solution.is_empty(), "seed {seed}: {:?}", sol.no_solution);
+        if sol.status == Status::Solved {
+            solved += 1;
+            let (kept, all) = gcs_solve::orientation_kept(&s, &sol.x);
+            assert_eq!(kept, all, "seed {seed}: every triangle as drawn");
+        }
+        closed += sol.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).count();
+    }
+    assert!(solved >= 8, "{solved} of 12 solved");
+    assert!(closed > 12, "closed-form steps taken: {closed}");
+}
+
+/// The redundant distance of a Laman sketch (`extra`) at its true value is consistent; 10% off
+/// it conflicts, off by 10% of its value, and its spanning group with it is a rigidity circuit
+/// (2·points − 2 distances on the points they join).
+#[test]
+fn a_redundant_distance_off_by_ten_percent_conflicts_with_its_circuit() {
+    for seed in [3, 4] {
+        let (s, _) = gcs_model::generate::laman_drawn(12, seed, 0.05);
+        let sol = run(&s);
+        let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+        assert_eq!(s.constraint(r.constraint).id, "extra");
+        assert!(!r.conflicting, "at its true value: {r:?}");
+        let value = s.constraint(r.constraint).value.clone().unwrap();
+        let v = num_traits::ToPrimitive::to_f64(&value).unwrap();
+        // The same model with extra's value 10% larger.
+        let text = s.to_ron();
+        let at = text.find("id: \"extra\"").unwrap();
+        let from = at + text[at..].find("value: ").unwrap() + "value: ".len();
+        let to = from + text[from..].find(|c: char| c == ')' || c == ',').unwrap();
+        let bad = model(&format!("{}{:.4}{}", &text[..from], 1.1 * v, &text[to..]));
+        let sol = run(&bad);
+        assert_eq!(sol.status, Status::Inconsistent);
+        let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+        assert!(r.conflicting && (r.residual + 0.1 * v).abs() < 1e-3 * v, "{r:?}");
+        let mut points = std::collections::BTreeSet::new();
+        for &c in r.spanning_group.iter().chain([&r.constraint]) {
+            points.extend(bad.constraint_base_entities(c));
+        }
+        assert_eq!(r.spanning_group.len() + 1, 2 * points.len() - 2, "a circuit");
+    }
+}

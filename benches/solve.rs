@@ -1,0 +1,53 @@
+//! Criterion benchmarks of the solver (issue 13): `gcs_solve::solve` on a system already
+//! analysed (the analysis is outside the timing), on random Laman sketches built from a known
+//! realization and drawn with 5% jitter (`generate::laman_drawn`, one redundant distance), and
+//! on CAD-like sketches (`generate::rectangles`: fixed rectangles with horizontal, vertical and
+//! two dimensions each, drawn at their solution).
+//!
+//! `benches/solve.sh` runs the same generator through `examples/drawn.rs` at 100 to 10,000
+//! points with 5% and 20% jitter and prints time, status and the triangles that kept their
+//! orientation (the table in BENCHMARKS.md).
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, SamplingMode};
+use gcs_analysis::{AnalysisOptions, analyze};
+use gcs_solve::{SolveOptions, solve};
+
+fn options() -> AnalysisOptions {
+    AnalysisOptions { sketch: false, global_rigidity: false, ..AnalysisOptions::default() }
+}
+
+fn main() {
+    let mut c = Criterion::default()
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .configure_from_args();
+    {
+        let mut group = c.benchmark_group("solve-laman-drawn-5pct");
+        group.sampling_mode(SamplingMode::Flat);
+        for n in [100, 300, 1000] {
+            let (system, _) = gcs_model::generate::laman_drawn(n, 1, 0.05);
+            let analysis = analyze(&system, &options()).expect("analysis");
+            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+                b.iter(|| black_box(solve(&system, &analysis, &SolveOptions::default())))
+            });
+        }
+        group.finish();
+    }
+    {
+        let mut group = c.benchmark_group("solve-rectangles");
+        group.sampling_mode(SamplingMode::Flat);
+        for n in [100, 1000] {
+            let system = gcs_model::generate::rectangles(n);
+            let analysis = analyze(&system, &options()).expect("analysis");
+            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+                b.iter(|| black_box(solve(&system, &analysis, &SolveOptions::default())))
+            });
+        }
+        group.finish();
+    }
+    c.final_summary();
+}
