@@ -149,15 +149,15 @@ pub fn levenberg_marquardt(
     Some(LmOutcome { x, converged, iterations, max_residual })
 }
 
-/// The damped Gauss–Newton step `(JᵀJ + λ·s·I)⁻¹ Jᵀr`, dense (faer's Cholesky); `None` when
-/// the damped matrix is not numerically positive definite.
-///
-/// Levenberg's damping, `λ·s·I` at the scale `s` of JᵀJ's diagonal: the same in every
-/// direction, so that as λ shrinks the step tends to the minimum-norm Gauss–Newton step (the
-/// nearest point, for an underdetermined projection). Marquardt's `λ·diag(JᵀJ)` would tilt it
-/// along directions the residuals do not see.
-fn dense_step(n: usize, j: &[SparseRow<f64>], r: &[f64], lambda: f64) -> Option<Vec<f64>> {
-    let mut h = Mat::<f64>::zeros(n, n);
+/// `Jᵀr` (as a column), and each product `J[k][a]·J[k][b]` of `JᵀJ` for every row `k` and pair
+/// of its columns `a ≤ b` (in the row's order) below `n`, to `add(a, b, value)`: the normal
+/// equations, assembled once for the dense and the sparse step.
+fn normal_equations(
+    n: usize,
+    j: &[SparseRow<f64>],
+    r: &[f64],
+    mut add: impl FnMut(usize, usize, f64),
+) -> Mat<f64> {
     let mut g = Mat::<f64>::zeros(n, 1);
     for (row, ri) in j.iter().zip(r) {
         let e = row.entries();
@@ -168,16 +168,29 @@ fn dense_step(n: usize, j: &[SparseRow<f64>], r: &[f64], lambda: f64) -> Option<
             g[(*ca, 0)] += va * ri;
             for (cb, vb) in &e[a..] {
                 if *cb < n {
-                    h[(*ca, *cb)] += va * vb;
+                    add(*ca, *cb, va * vb);
                 }
             }
         }
     }
-    for a in 0..n {
-        for b in 0..a {
-            h[(a, b)] = h[(b, a)];
+    g
+}
+
+/// The damped Gauss–Newton step `(JᵀJ + λ·s·I)⁻¹ Jᵀr`, dense (faer's Cholesky); `None` when
+/// the damped matrix is not numerically positive definite.
+///
+/// Levenberg's damping, `λ·s·I` at the scale `s` of JᵀJ's diagonal: the same in every
+/// direction, so that as λ shrinks the step tends to the minimum-norm Gauss–Newton step (the
+/// nearest point, for an underdetermined projection). Marquardt's `λ·diag(JᵀJ)` would tilt it
+/// along directions the residuals do not see.
+fn dense_step(n: usize, j: &[SparseRow<f64>], r: &[f64], lambda: f64) -> Option<Vec<f64>> {
+    let mut h = Mat::<f64>::zeros(n, n);
+    let g = normal_equations(n, j, r, |a, b, v| {
+        h[(a, b)] += v;
+        if a != b {
+            h[(b, a)] += v;
         }
-    }
+    });
     let scale = (0..n).map(|i| h[(i, i)]).fold(0.0, f64::max).max(1e-12);
     for i in 0..n {
         h[(i, i)] += lambda * scale;
@@ -201,22 +214,7 @@ impl SparseNormal {
     fn step(&mut self, n: usize, j: &[SparseRow<f64>], r: &[f64], lambda: f64) -> Option<Vec<f64>> {
         // JᵀJ's lower triangle as (column, row, value), every diagonal entry present.
         let mut entries: Vec<(usize, usize, f64)> = (0..n).map(|i| (i, i, 0.0)).collect();
-        let mut g = Mat::<f64>::zeros(n, 1);
-        for (row, ri) in j.iter().zip(r) {
-            let e = row.entries();
-            for (a, (ca, va)) in e.iter().enumerate() {
-                if *ca >= n {
-                    continue;
-                }
-                g[(*ca, 0)] += va * ri;
-                for (cb, vb) in &e[a..] {
-                    if *cb < n {
-                        let (lo, hi) = if cb < ca { (*cb, *ca) } else { (*ca, *cb) };
-                        entries.push((lo, hi, va * vb));
-                    }
-                }
-            }
-        }
+        let g = normal_equations(n, j, r, |a, b, v| entries.push((a.min(b), a.max(b), v)));
         entries.sort_unstable_by_key(|&(c, r, _)| (c, r));
         let mut col_ptr = vec![0usize; n + 1];
         let mut row_idx: Vec<usize> = Vec::with_capacity(entries.len());
@@ -254,7 +252,8 @@ impl SparseNormal {
             SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx),
             values,
         );
-        let llt = Llt::try_new_with_symbolic(symbolic.clone(), matrix.as_ref(), Side::Lower).ok()?;
+        let llt =
+            Llt::try_new_with_symbolic(symbolic.clone(), matrix.as_ref(), Side::Lower).ok()?;
         let step = llt.solve(&g);
         let step: Vec<f64> = (0..n).map(|i| step[(i, 0)]).collect();
         step.iter().all(|v| v.is_finite()).then_some(step)

@@ -251,42 +251,45 @@ fn fractional_inputs_are_certified() {
     assert_eq!(analysis.outcomes[2].combination(), Some(&[(0, frac(1, 2)), (1, int(6))][..]));
 }
 
-#[test]
-fn the_extra_primes_are_prime_and_large() {
-    // Miller–Rabin with the first twelve prime bases is deterministic below 3.3·10^24.
-    fn pow_mod(mut b: u128, mut e: u128, m: u128) -> u128 {
-        let mut r = 1u128;
-        b %= m;
-        while e > 0 {
-            if e & 1 == 1 {
-                r = r * b % m;
-            }
-            b = b * b % m;
-            e >>= 1;
+/// `b^e mod m`.
+fn pow_mod(mut b: u128, mut e: u128, m: u128) -> u128 {
+    let mut r = 1u128;
+    b %= m;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = r * b % m;
         }
-        r
+        b = b * b % m;
+        e >>= 1;
     }
-    fn is_prime(n: u64) -> bool {
-        let n = n as u128;
-        let (mut d, mut s) = (n - 1, 0);
-        while d % 2 == 0 {
-            d /= 2;
-            s += 1;
+    r
+}
+
+/// Miller–Rabin with the first twelve prime bases: deterministic below 3.3·10^24.
+fn is_prime(n: u64) -> bool {
+    let n = n as u128;
+    let (mut d, mut s) = (n - 1, 0);
+    while d % 2 == 0 {
+        d /= 2;
+        s += 1;
+    }
+    [2u128, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37].iter().all(|&a| {
+        let mut x = pow_mod(a, d, n);
+        if x == 1 || x == n - 1 {
+            return true;
         }
-        [2u128, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37].iter().all(|&a| {
-            let mut x = pow_mod(a, d, n);
-            if x == 1 || x == n - 1 {
+        for _ in 1..s {
+            x = x * x % n;
+            if x == n - 1 {
                 return true;
             }
-            for _ in 1..s {
-                x = x * x % n;
-                if x == n - 1 {
-                    return true;
-                }
-            }
-            false
-        })
-    }
+        }
+        false
+    })
+}
+
+#[test]
+fn the_extra_primes_are_prime_and_large() {
     for p in [ModP::PRIME, SECOND_PRIME, THIRD_PRIME] {
         assert!(is_prime(p), "{p}");
         assert!(p > 1 << 60);
@@ -299,54 +302,21 @@ fn the_extra_primes_are_prime_and_large() {
 #[test]
 fn witness_primes_are_what_the_modular_witness_needs() {
     use gcs_rank::{Field, ModQ, WITNESS_PRIMES, with_modulus};
-    let pow = |mut b: u128, mut e: u128, m: u128| {
-        let mut r = 1u128;
-        b %= m;
-        while e > 0 {
-            if e & 1 == 1 {
-                r = r * b % m;
-            }
-            b = b * b % m;
-            e >>= 1;
-        }
-        r
-    };
-    // Miller–Rabin with the bases that decide every n < 3.3·10^24.
-    let is_prime = |n: u64| {
-        let n = n as u128;
-        let (mut d, mut s) = (n - 1, 0);
-        while d % 2 == 0 {
-            d /= 2;
-            s += 1;
-        }
-        [2u128, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41].iter().all(|&a| {
-            let mut x = pow(a, d, n);
-            if x == 1 || x == n - 1 {
-                return true;
-            }
-            for _ in 1..s {
-                x = x * x % n;
-                if x == n - 1 {
-                    return true;
-                }
-            }
-            false
-        })
-    };
     assert_eq!(WITNESS_PRIMES[0], ModP::PRIME);
     for p in WITNESS_PRIMES {
         assert!(is_prime(p) && p % 4 == 3, "{p}");
     }
-    let square = |a: u128, p: u64| pow(a, (p as u128 - 1) / 2, p as u128) == 1;
+    let square = |a: u128, p: u64| pow_mod(a, (p as u128 - 1) / 2, p as u128) == 1;
     assert!(!square(3, ModP::PRIME), "3 is no square modulo 2^61 - 1");
     for a in [2, 3, 5, 7, 11, 13, 17, 19, 23] {
         assert!(square(a, WITNESS_PRIMES[1]), "{a}");
     }
     with_modulus(WITNESS_PRIMES[1], || {
         let three = ModQ::new(3);
-        let root = ModQ::new(
-            pow(3, (WITNESS_PRIMES[1] as u128 + 1) / 4, WITNESS_PRIMES[1] as u128) as u64,
-        );
+        let root =
+            ModQ::new(
+                pow_mod(3, (WITNESS_PRIMES[1] as u128 + 1) / 4, WITNESS_PRIMES[1] as u128) as u64
+            );
         assert_eq!(Field::mul(&root, &root), three);
         assert_eq!(
             Field::mul(&ModQ::new(WITNESS_PRIMES[1] - 1), &ModQ::new(2)).value(),

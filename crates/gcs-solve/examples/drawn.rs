@@ -15,11 +15,18 @@ fn main() {
     let constructive = args.get(4).is_none_or(|a| a != "numeric");
     let (system, _) = gcs_model::generate::laman_drawn(n, seed, jitter);
     let t = Instant::now();
-    let options = AnalysisOptions { clusters: false, sketch: false, global_rigidity: false, ..AnalysisOptions::default() };
+    let options = AnalysisOptions {
+        clusters: false,
+        sketch: false,
+        global_rigidity: false,
+        ..AnalysisOptions::default()
+    };
     let analysis = analyze(&system, &options).expect("analysis");
     let analysed = t.elapsed();
     let t = Instant::now();
-    let solution = solve(&system, &analysis, &SolveOptions { constructive, ..SolveOptions::default() }).expect("solve");
+    let solution =
+        solve(&system, &analysis, &SolveOptions { constructive, ..SolveOptions::default() })
+            .expect("solve");
     let solved = t.elapsed();
     let kept = gcs_solve::orientation_kept(&system, &solution.x);
     if std::env::var_os("VERBOSE").is_some() {

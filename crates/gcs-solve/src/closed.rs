@@ -117,8 +117,12 @@ mod tests {
     #[test]
     fn tangent_circles_give_one_candidate() {
         // Outside and inside tangency.
-        assert_eq!(circle_circle([0.0, 0.0], 2.0, [5.0, 0.0], 3.0, 1e-12), Intersection::Tangent([2.0, 0.0]));
-        let Intersection::Tangent(p) = circle_circle([0.0, 0.0], 5.0, [2.0, 0.0], 3.0, 1e-12) else {
+        assert_eq!(
+            circle_circle([0.0, 0.0], 2.0, [5.0, 0.0], 3.0, 1e-12),
+            Intersection::Tangent([2.0, 0.0])
+        );
+        let Intersection::Tangent(p) = circle_circle([0.0, 0.0], 5.0, [2.0, 0.0], 3.0, 1e-12)
+        else {
             panic!()
         };
         assert!((p[0] - 5.0).abs() < 1e-12 && p[1].abs() < 1e-12);

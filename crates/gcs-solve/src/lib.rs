@@ -339,8 +339,7 @@ impl<'s> Problem<'s> {
         // A rough start (a residual beyond 1% of the model's size) takes `first_step` first.
         let rough = offset.iter().any(|v| !(v.abs() <= 1e-2));
         *self.offset.borrow_mut() = offset;
-        let (mut t, mut dt, mut iterations) =
-            (0.0f64, if rough { first_step } else { 1.0f64 }, 0);
+        let (mut t, mut dt, mut iterations) = (0.0f64, if rough { first_step } else { 1.0f64 }, 0);
         let converged = loop {
             let target = if t + dt >= 1.0 - 1e-12 { 1.0 } else { t + dt };
             let last = target == 1.0;
@@ -892,7 +891,9 @@ pub fn orientation_kept(system: &System, x: &[f64]) -> (usize, usize) {
         .iter()
         .filter(|t| {
             let [a, b, c] = t.map(|i| points[i]);
-            let turn = |y: &[f64]| closed::orientation(at(&layout, y, a), at(&layout, y, b), at(&layout, y, c));
+            let turn = |y: &[f64]| {
+                closed::orientation(at(&layout, y, a), at(&layout, y, b), at(&layout, y, c))
+            };
             turn(&drawn) * turn(x) > 0.0
         })
         .count();

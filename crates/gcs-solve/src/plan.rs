@@ -62,7 +62,8 @@ pub fn construction(system: &System, solved: &[ConstraintIdx]) -> Construction {
     let mut live: Vec<usize> = incident.iter().map(Vec::len).collect();
     let mut peeled = vec![false; n];
     let mut steps = Vec::new();
-    let mut queue: Vec<EntityIdx> = system.entity_indices().filter(|e| live[e.index()] == 2).collect();
+    let mut queue: Vec<EntityIdx> =
+        system.entity_indices().filter(|e| live[e.index()] == 2).collect();
     while let Some(p) = queue.pop() {
         if peeled[p.index()] || live[p.index()] != 2 || system.entity(p).kind() != EntityKind::Point
         {
