@@ -19,9 +19,12 @@ fi
 cargo build --release --locked --target wasm32-unknown-unknown
 wasm="$target/wasm32-unknown-unknown/release/gcs_wasm.wasm"
 rm -rf pkg
-wasm-bindgen --target nodejs --out-dir pkg/node "$wasm"
-wasm-bindgen --target web --out-dir pkg/web "$wasm"
-if command -v wasm-opt >/dev/null 2>&1; then
+wasm-bindgen --target nodejs --remove-name-section --remove-producers-section --out-dir pkg/node "$wasm"
+wasm-bindgen --target web --remove-name-section --remove-producers-section --out-dir pkg/web "$wasm"
+# binaryen older than 116 mishandles the reference types wasm-bindgen emits (node then fails
+# in __wbindgen_init_externref_table): only a recent wasm-opt is used.
+wasm_opt_version="$(wasm-opt --version 2>/dev/null | sed -n 's/^wasm-opt version \([0-9]*\).*/\1/p')"
+if [ "${wasm_opt_version:-0}" -ge 116 ]; then
     for f in pkg/node/gcs_wasm_bg.wasm pkg/web/gcs_wasm_bg.wasm; do
         # The features Rust's wasm32 target emits by default.
         wasm-opt -Oz --enable-bulk-memory --enable-mutable-globals --enable-sign-ext \
@@ -29,7 +32,7 @@ if command -v wasm-opt >/dev/null 2>&1; then
             "$f" -o "$f.opt" && mv "$f.opt" "$f"
     done
 else
-    echo "build.sh: wasm-opt not found (apt-get install binaryen): the .wasm is not shrunk further" >&2
+    echo "build.sh: no wasm-opt ≥ 116 (found: ${wasm_opt_version:-none}): the .wasm is not shrunk further" >&2
 fi
 pkg_version="$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -1)"
 cat > pkg/package.json <<JSON

@@ -123,14 +123,14 @@ def test_kite_typed_attributes():
 
 def test_cad_sketches():
     models = gcs.load_all("data/cad/plate.FCStd")
-    assert [m.name for m in models] == ["Plate"]
-    plate = gcs.load("data/cad/plate.FCStd", sketch="Plate")
+    assert [m.name for m in models] == ["plate/Sketch"]
+    plate = gcs.load("data/cad/plate.FCStd", sketch="plate/Sketch")
     report = plate.analyze()
     assert report.complete_import is True and report.skipped == []
     assert report.well_constrained and report.dof == 0
     with pytest.raises(gcs.ReadError) as e:
         gcs.load("data/cad/plate.FCStd", sketch="Sketch999")
-    assert "Plate" in e.value.message and e.value.file == "data/cad/plate.FCStd"
+    assert "plate/Sketch" in e.value.message and e.value.file == "data/cad/plate.FCStd"
     # Bytes work as well as files.
     data = Path("data/cad/plate.FCStd").read_bytes()
     again = gcs.loads(data, format="fcstd", file="data/cad/plate.FCStd").analyze()
