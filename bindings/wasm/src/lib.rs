@@ -8,6 +8,61 @@ use gcs_report::{CheckReport, failure_json};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
+#[wasm_bindgen(typescript_custom_section)]
+const TYPES: &str = r#"
+/** A model: RON text, or a CAD file (.slvs, Onshape JSON as text; .FCStd as bytes). */
+export type Input = string | Uint8Array;
+/** The options of every function (all optional). */
+export interface Options {
+  /** The name of the input in reports and errors (default "<string>"); its extension picks the format. */
+  file?: string;
+  format?: "ron" | "slvs" | "fcstd" | "onshape";
+  /** The model of a CAD file with several sketches. */
+  sketch?: string;
+  backend?: "exact" | "rational" | "modp" | "float";
+  tolerance?: number;
+  seed?: number;
+  structural?: boolean;
+  decompose?: boolean;
+  maxIterations?: number;
+}
+/** A redundant constraint (docs/format.md §2). */
+export interface Redundant {
+  constraint: string; rows: number; doc: number; spanning_group: string[];
+  conflicting?: boolean; residual?: number; allowance?: number;
+  [field: string]: unknown;
+}
+/** The line of `gcs analyze --format json` (docs/format.md §2–§4; more fields may be present). */
+export interface Report {
+  schema: number; model: string; file: string; dim: number; backend: string; witness: string;
+  entities: number; constraints: number; unknowns: number; equations: number; rank: number;
+  dof_absolute: number; trivial_motions: number; dof: number; rigid: boolean;
+  well_constrained: boolean; redundant: Redundant[];
+  clusters: { entities: string[]; constraints: string[]; [field: string]: unknown }[];
+  [field: string]: unknown;
+}
+/** The line of a model that failed. */
+export interface Failure { schema: number; file: string; error: string; }
+/** A redundant constraint measured at the solution. */
+export interface Checked {
+  constraint: string; residual: number; allowance: number; conflicting: boolean; spanning_group: string[];
+}
+/** The line of `gcs solve --format json` (docs/format.md §4, "Solving"). */
+export interface SolveReport {
+  schema: number; model: string; file: string; status: "solved" | "inconsistent" | "failed";
+  max_residual: number; moved: number; entities: { id: string; [field: string]: unknown }[];
+  conflicting: Checked[]; redundant: Checked[]; worst?: string; tolerance: number; scale: number;
+  iterations: number; analysis_backend: string;
+  [field: string]: unknown;
+}
+/** The line of `gcs check --format json`. */
+export interface CheckReport {
+  schema: number; model: string; file: string; dim: number; entities: number; constraints: number;
+  entity_dof: number; constraint_doc: number; naive_dof: number; displacements: number;
+  [field: string]: unknown;
+}
+"#;
+
 /// The options every function takes (all optional; unknown ones are an error).
 #[derive(Deserialize, Default)]
 #[serde(default, deny_unknown_fields, rename_all = "camelCase")]
@@ -104,8 +159,11 @@ fn analyze_options(o: &Options) -> Result<AnalyzeOptions, JsError> {
 /// The analysis of a model (RON text, or a CAD file's text or bytes): the object of the line
 /// of `gcs analyze --format json` (docs/format.md §2–§4). Throws an `Error` whose message
 /// names the file, line and id when the model cannot be read or analysed.
-#[wasm_bindgen]
-pub fn analyze(input: JsValue, options: JsValue) -> Result<JsValue, JsError> {
+#[wasm_bindgen(unchecked_return_type = "Report")]
+pub fn analyze(
+    #[wasm_bindgen(unchecked_param_type = "Input")] input: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Options | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
     let o = self::options(options)?;
     let settings = analyze_options(&o)?;
     let (file, m) = one(&input, &o)?;
@@ -116,8 +174,11 @@ pub fn analyze(input: JsValue, options: JsValue) -> Result<JsValue, JsError> {
 /// Every model of the input analysed, as `gcs analyze --format json` prints them: one object
 /// per model (per sketch of a CAD file), a model that fails as its failure object
 /// (`{"schema", "file", "error"}`).
-#[wasm_bindgen(js_name = analyzeAll)]
-pub fn analyze_all(input: JsValue, options: JsValue) -> Result<js_sys::Array, JsError> {
+#[wasm_bindgen(js_name = analyzeAll, unchecked_return_type = "Array<Report | Failure>")]
+pub fn analyze_all(
+    #[wasm_bindgen(unchecked_param_type = "Input")] input: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Options | undefined")] options: JsValue,
+) -> Result<js_sys::Array, JsError> {
     let o = self::options(options)?;
     let settings = analyze_options(&o)?;
     let (file, models) = read(&input, &o)?;
@@ -138,8 +199,11 @@ pub fn analyze_all(input: JsValue, options: JsValue) -> Result<js_sys::Array, Js
 }
 
 /// The solve of a model at its values: the object of the line of `gcs solve --format json`.
-#[wasm_bindgen]
-pub fn solve(input: JsValue, options: JsValue) -> Result<JsValue, JsError> {
+#[wasm_bindgen(unchecked_return_type = "SolveReport")]
+pub fn solve(
+    #[wasm_bindgen(unchecked_param_type = "Input")] input: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Options | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
     let o = self::options(options)?;
     let solve_options = gcs_solve::SolveOptions {
         tolerance: o.tolerance.unwrap_or(1e-9),
@@ -152,8 +216,11 @@ pub fn solve(input: JsValue, options: JsValue) -> Result<JsValue, JsError> {
 }
 
 /// The counts of a model: the object of the line of `gcs check --format json`.
-#[wasm_bindgen]
-pub fn check(input: JsValue, options: JsValue) -> Result<JsValue, JsError> {
+#[wasm_bindgen(unchecked_return_type = "CheckReport")]
+pub fn check(
+    #[wasm_bindgen(unchecked_param_type = "Input")] input: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Options | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
     let o = self::options(options)?;
     let (file, m) = one(&input, &o)?;
     parse(&CheckReport::new(&m.system, &file).with_import(m.import).to_json())
