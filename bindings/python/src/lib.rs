@@ -162,7 +162,12 @@ impl NativeModel {
 
     /// `gcs solve --format json`'s line.
     #[pyo3(signature = (tolerance=1e-9, max_iterations=500))]
-    fn solve_json(&self, py: Python<'_>, tolerance: f64, max_iterations: usize) -> PyResult<String> {
+    fn solve_json(
+        &self,
+        py: Python<'_>,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> PyResult<String> {
         let options = gcs_solve::SolveOptions {
             tolerance,
             max_iterations,
@@ -221,9 +226,7 @@ fn models(
     let format = match format {
         None => None,
         Some(name) => Some(InputFormat::from_name(name).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "format {name:?}: expected ron, slvs, fcstd or onshape"
-            ))
+            PyValueError::new_err(format!("format {name:?}: expected ron, slvs, fcstd or onshape"))
         })?),
     };
     let mut models = run::read_models(file, bytes, format).map_err(to_py)?;
