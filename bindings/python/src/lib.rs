@@ -33,8 +33,18 @@ create_exception!(_gcs, SolveError, GcsError, "A model that cannot be solved.");
 
 /// The Python exception of an error, with its location as attributes.
 fn to_py(e: ReportError) -> PyErr {
-    let message = e.to_string();
+    to_py_at(e, None)
+}
+
+/// The same for an error of a model read from `file` (the model's `at`: its file, and the
+/// sketch of a CAD file), named as the CLI names it: `at: message`.
+fn to_py_at(e: ReportError, model: Option<(&str, &str)>) -> PyErr {
+    let mut message = e.to_string();
     let mut file = None;
+    if let Some((f, at)) = model {
+        message = format!("{at}: {message}");
+        file = Some(f.to_owned());
+    }
     let (mut line, mut column, mut id, mut element) = (None, None, None, None);
     let err = match &e {
         ReportError::Model(m) => {
@@ -100,6 +110,12 @@ fn backend(name: &str, tolerance: f64) -> PyResult<Backend> {
     Ok(b)
 }
 
+impl NativeModel {
+    fn error(&self, e: ReportError) -> PyErr {
+        to_py_at(e, Some((&self.file, &self.model.at(&self.file))))
+    }
+}
+
 #[pymethods]
 impl NativeModel {
     /// The model's name.
@@ -157,7 +173,7 @@ impl NativeModel {
             run::analyze(system, &options)
                 .map(|a| a.report(system, &self.file, self.model.import.clone()).to_json())
         });
-        result.map_err(to_py)
+        result.map_err(|e| self.error(e))
     }
 
     /// `gcs solve --format json`'s line.
@@ -178,7 +194,7 @@ impl NativeModel {
             run::solve(system, &self.file, self.model.import.clone(), &options)
                 .map(|(r, _)| r.to_json())
         });
-        result.map_err(to_py)
+        result.map_err(|e| self.error(e))
     }
 
     /// The Jacobian at the witness: `(nrows, ncols, rows, cols, values, row_ids, row_internal,
@@ -207,7 +223,8 @@ impl NativeModel {
             ..AnalyzeOptions::default()
         };
         let system = &self.model.system;
-        let j = py.detach(|| run::jacobian_at_witness(system, &options)).map_err(to_py)?;
+        let j =
+            py.detach(|| run::jacobian_at_witness(system, &options)).map_err(|e| self.error(e))?;
         let rows = j.entries.iter().map(|e| e.0).collect();
         let cols = j.entries.iter().map(|e| e.1).collect();
         let values = j.entries.iter().map(|e| e.2).collect();

@@ -78,7 +78,8 @@ def compare(cli: List[dict], py: List[dict]) -> None:
     assert len(cli) == len(py) > 0
     for c, p in zip(cli, py):
         if "python_error" in p:
-            # The CLI's message is "<file>[: <sketch>]: <the error>[: <a hint naming a flag>]".
+            # The CLI's message is "<file>[: <sketch>]: <the error>[: <a hint naming a flag>]",
+            # the binding's the same without the hint.
             assert "error" in c, (c, p)
             assert p["python_error"] in c["error"], (c["error"], p["python_error"])
         else:
@@ -154,6 +155,18 @@ def test_read_errors_carry_file_line_column_id():
     assert e.value.line == 1 and e.value.id is None
     with pytest.raises(ValueError):
         gcs.load("data/paper/kite.ron").analyze(backend="quantum")
+
+
+def test_solve_errors_name_the_file():
+    # 376 fixed rectangles: 3008 unknowns, more than the dense solver takes (3000).
+    rect = "Point(id: \"a{i}\", at: [{x}, 0]), Point(id: \"b{i}\", at: [{y}, 0]), Point(id: \"c{i}\", at: [{y}, 1]), Point(id: \"d{i}\", at: [{x}, 1])"
+    points = ", ".join(rect.format(i=i, x=2 * i, y=2 * i + 1) for i in range(376))
+    model = gcs.loads(f"System(dim: 2, entities: [{points}])", file="big.ron")
+    with pytest.raises(gcs.SolveError) as e:
+        model.solve()
+    assert e.value.file == "big.ron"
+    assert e.value.message.startswith("big.ron: 3008 unknowns: more than the dense solver takes")
+    assert isinstance(e.value, gcs.GcsError)
 
 
 KITE = {

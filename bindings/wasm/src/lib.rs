@@ -184,11 +184,7 @@ pub fn analyze_all(
     let (file, models) = read(&input, &o)?;
     let out = js_sys::Array::new();
     for m in models {
-        // As the CLI names a failed model: the file, and the sketch of a CAD file.
-        let at = match &m.import {
-            Some(_) => format!("{file}: {}", m.system.name()),
-            None => file.clone(),
-        };
+        let at = m.at(&file);
         let line = match run::analyze(&m.system, &settings) {
             Ok(a) => a.report(&m.system, &file, m.import).to_json(),
             Err(e) => failure_json(&file, &format!("{at}: {e}")),

@@ -45,17 +45,15 @@ type Outcome = Result<(String, String), String>;
 
 /// The analysis of one model, its report rendered.
 fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> Outcome {
-    let batch::Model { system, import } = model?;
+    let model = model?;
+    // A CAD file holds several sketches: the message names the one that failed.
+    let at = model.at(file);
+    let batch::Model { system, import } = model;
     let options = AnalyzeOptions {
         backend: settings.backend,
         seed: settings.seed,
         structural: settings.structural,
         decompose: settings.decompose,
-    };
-    // A CAD file holds several sketches: the message names the one that failed.
-    let at = match &import {
-        Some(_) => format!("{file}: {}", system.name()),
-        None => file.to_owned(),
     };
     let analyzed = analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
     let dot = match (&settings.dot, &analyzed.analysis.decomposition) {

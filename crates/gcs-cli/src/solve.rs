@@ -14,11 +14,9 @@ pub(crate) fn run(paths: &[PathBuf], format: Format, out_dir: Option<&Path>) -> 
     let mut failed = 0;
     let options = SolveOptions::default();
     for (file, model) in batch::models(paths) {
-        let result = model.and_then(|batch::Model { system, import }| {
-            let at = match &import {
-                Some(_) => format!("{file}: {}", system.name()),
-                None => file.clone(),
-            };
+        let result = model.and_then(|model| {
+            let at = model.at(&file);
+            let batch::Model { system, import } = model;
             let (report, solution) = gcs_report::run::solve(&system, &file, import, &options)
                 .map_err(|e| format!("{at}: {e}"))?;
             if let Some(dir) = out_dir {

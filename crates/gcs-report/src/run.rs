@@ -38,6 +38,17 @@ pub struct Model {
     pub import: Option<ImportReport>,
 }
 
+impl Model {
+    /// How messages name this model when it fails: the file, and the sketch of a CAD file
+    /// (which holds several).
+    pub fn at(&self, file: &str) -> String {
+        match &self.import {
+            Some(_) => format!("{file}: {}", self.system.name()),
+            None => file.to_owned(),
+        }
+    }
+}
+
 /// How to read a file's bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum InputFormat {
