@@ -5,10 +5,9 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gcs_analysis::{AnalysisOptions, Backend, analyze};
-use gcs_jacobian::WitnessOptions;
-use gcs_report::{Report, Structural};
-use gcs_solve::{Solution, SolveOptions};
+use gcs_analysis::{AnalysisError, Backend};
+use gcs_report::ReportError;
+use gcs_report::run::{AnalyzeOptions, analyze};
 
 use crate::Format;
 use crate::batch::{self, Out};
@@ -31,39 +30,14 @@ pub(crate) struct Settings {
 }
 
 /// What to tell a user whose exact analysis found only an approximate witness.
-fn hint(e: &gcs_analysis::AnalysisError) -> &'static str {
+fn hint(e: &ReportError) -> &'static str {
     match e {
-        gcs_analysis::AnalysisError::ApproximateWitness(_)
-        | gcs_analysis::AnalysisError::NoModularWitness(_) => {
-            ": rerun with --backend float to analyse it there"
-        }
+        ReportError::Analysis(
+            AnalysisError::ApproximateWitness(_) | AnalysisError::NoModularWitness(_),
+        ) => ": rerun with --backend float to analyse it there",
         _ => "",
     }
 }
-
-/// A text report with the import section of a CAD sketch after its first line.
-pub(crate) fn with_import_text(text: &str, import: Option<&gcs_report::ImportReport>) -> String {
-    let Some(import) = import else { return text.to_owned() };
-    match text.split_once('\n') {
-        Some((first, rest)) => format!("{first}\n{}{rest}", import.text()),
-        None => format!("{text}\n{}", import.text().trim_end()),
-    }
-}
-
-/// The model solved at its values when it has redundant constraints, to tell those that agree
-/// from those that conflict (`None` without redundancy, without a complete drawing to start
-/// from, or when it is too large for the solver: the report then says only "redundant").
-fn values(system: &gcs_model::System, analysis: &gcs_analysis::Analysis) -> Option<Solution> {
-    if analysis.sketch.is_none() || analysis.redundant.iter().all(|r| r.rows < r.doc) {
-        return None;
-    }
-    let options = SolveOptions { max_unknowns: ANALYZE_SOLVE_LIMIT, ..SolveOptions::default() };
-    gcs_solve::solve(system, analysis, &options).ok()
-}
-
-/// The most unknowns `gcs analyze` solves for to check redundant constraints against the
-/// values (the solver's steps are dense: `gcs solve` takes more).
-const ANALYZE_SOLVE_LIMIT: usize = 1_000;
 
 /// What one model gave: its report (text or JSON), and its W-decompositions as DOT; or the
 /// message of why it failed.
@@ -71,47 +45,24 @@ type Outcome = Result<(String, String), String>;
 
 /// The analysis of one model, its report rendered.
 fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> Outcome {
-    let (system, import) = model?;
-    let options = AnalysisOptions {
-        backend: settings.backend,
-        witness: WitnessOptions { seed: settings.seed, ..WitnessOptions::default() },
-        decompose: settings.decompose,
-        ..AnalysisOptions::default()
-    };
+    let model = model?;
     // A CAD file holds several sketches: the message names the one that failed.
-    let at = match &import {
-        Some(_) => format!("{file}: {}", system.name()),
-        None => file.to_owned(),
+    let at = model.at(file);
+    let batch::Model { system, import } = model;
+    let options = AnalyzeOptions {
+        backend: settings.backend,
+        seed: settings.seed,
+        structural: settings.structural,
+        decompose: settings.decompose,
     };
-    let analysis = analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
-    let s = if settings.structural {
-        Some(Structural::new(&system, &analysis).map_err(|e| format!("{at}: {e}"))?)
-    } else {
-        None
-    };
-    let solution = values(&system, &analysis);
-    let dot = match (&settings.dot, &analysis.decomposition) {
+    let analyzed = analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
+    let dot = match (&settings.dot, &analyzed.analysis.decomposition) {
         (Some(_), Some(trees)) => gcs_report::clusters::dot(&system, trees),
         _ => String::new(),
     };
     let report = match settings.format {
-        Format::Json => {
-            let mut report = Report::new(&system, file, &analysis, s.as_ref());
-            if let Some(sol) = &solution {
-                report = report.with_solution(&system, sol);
-            }
-            report.with_import(import).to_json()
-        }
-        Format::Text => {
-            let text = gcs_report::text_with_solution(
-                &system,
-                file,
-                &analysis,
-                s.as_ref(),
-                solution.as_ref(),
-            );
-            with_import_text(&text, import.as_ref())
-        }
+        Format::Json => analyzed.report(&system, file, import).to_json(),
+        Format::Text => analyzed.text(&system, file, import.as_ref()),
     };
     Ok((report, dot))
 }

@@ -56,7 +56,7 @@ fn walk(dir: &Path, files: &mut Vec<PathBuf>) -> io::Result<()> {
 }
 
 /// One model read: the validated system and, for a sketch of a CAD file, its import section.
-pub(crate) type Model = (gcs_model::System, Option<gcs_report::ImportReport>);
+pub(crate) type Model = gcs_report::run::Model;
 
 /// Every model the paths stand for, in order: its file's display name, and the model or the
 /// message of why it could not be read (naming the file). A CAD file stands for each of its
@@ -66,29 +66,16 @@ pub(crate) fn models(paths: &[PathBuf]) -> impl Iterator<Item = (String, Result<
 }
 
 /// The models of one file: a RON model, or the sketches of a CAD file (recognised by
-/// extension, then by content).
+/// extension, then by content: [`gcs_report::run::read_models`]).
 fn read_models(path: &Path, file: &str) -> Vec<Result<Model, String>> {
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) => return vec![Err(format!("{file}: cannot read: {e}"))],
     };
-    let is_ron = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
-    if !is_ron && gcs_import::Format::detect(file, &bytes).is_some() {
-        return match gcs_import::import(file, &bytes) {
-            Ok(sketches) if sketches.is_empty() => vec![Err(format!("{file}: no sketch in it"))],
-            Ok(sketches) => sketches
-                .iter()
-                .map(|l| Ok((l.system.clone(), Some(gcs_report::ImportReport::new(l)))))
-                .collect(),
-            Err(e) => vec![Err(e.to_string())],
-        };
+    match gcs_report::run::read_models(file, &bytes, None) {
+        Ok(models) => models.into_iter().map(Ok).collect(),
+        Err(e) => vec![Err(e.to_string())],
     }
-    let result = String::from_utf8(bytes)
-        .map_err(|_| format!("{file}: not UTF-8 text (nor a CAD file this build reads)"))
-        .and_then(|text| {
-            gcs_model::System::from_ron_str(&text, Some(file)).map_err(|e| e.to_string())
-        });
-    vec![result.map(|s| (s, None))]
 }
 
 /// The display form of a path in reports: as given, with `/` separators.

@@ -13,13 +13,12 @@ pub(crate) fn run(paths: &[PathBuf], format: Format) -> ExitCode {
     let mut failed = 0;
     for (file, result) in batch::models(paths) {
         match result {
-            Ok((system, import)) => {
+            Ok(batch::Model { system, import }) => {
                 let report = CheckReport::new(&system, &file);
                 match format {
                     Format::Json => out.line(&report.with_import(import).to_json()),
-                    Format::Text => {
-                        out.line(&crate::analyze::with_import_text(&report.text(), import.as_ref()))
-                    }
+                    Format::Text => out
+                        .line(&gcs_report::run::with_import_text(&report.text(), import.as_ref())),
                 }
             }
             Err(message) => {

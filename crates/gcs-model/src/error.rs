@@ -245,6 +245,30 @@ pub enum ModelErrorKind {
 }
 
 impl ModelErrorKind {
+    /// The id of the entity or constraint at fault, when the error names one (the duplicated id
+    /// for [`ModelErrorKind::DuplicateId`]).
+    pub fn id(&self) -> Option<&str> {
+        match self {
+            ModelErrorKind::DuplicateId { id }
+            | ModelErrorKind::KindNotInDim { id, .. }
+            | ModelErrorKind::WrongCoordinateCount { id, .. }
+            | ModelErrorKind::WrongPositionCount { id, .. }
+            | ModelErrorKind::Degenerate { id, .. }
+            | ModelErrorKind::KindMismatch { id, .. }
+            | ModelErrorKind::RepeatedEntity { id, .. }
+            | ModelErrorKind::SegmentEndpoint { id, .. }
+            | ModelErrorKind::FixWithoutPosition { id, .. } => Some(id),
+            ModelErrorKind::UnknownId { owner, .. }
+            | ModelErrorKind::NotAnEntity { owner, .. }
+            | ModelErrorKind::NonFinite { owner, .. }
+            | ModelErrorKind::NotANumber { owner, .. }
+            | ModelErrorKind::Negative { owner, .. } => Some(owner),
+            ModelErrorKind::Syntax(_)
+            | ModelErrorKind::UnsupportedDim(_)
+            | ModelErrorKind::EmptyId => None,
+        }
+    }
+
     /// The field the error is about, when there is one (used to locate it in the file).
     pub fn field(&self) -> Option<&'static str> {
         match self {

@@ -8,9 +8,11 @@
 //!   section of the report and the disagreements explained (format §3);
 //! - [`CheckReport`]: `gcs check`'s counts;
 //! - [`clusters`]: clusters and W-decompositions as data, text trees and Graphviz DOT;
-//! - [`failure_json`]: the line of a file that failed.
+//! - [`failure_json`]: the line of a file that failed;
+//! - [`run`]: what every front end runs on a model (read, analyse, solve, the Jacobian), so
+//!   that the CLI and the bindings call the same functions.
 //!
-//! The crate computes nothing but the comparison of the structural methods with the witness
+//! The crate computes nothing itself but the comparison of the structural methods with the witness
 //! analysis; it never prints and never touches files.
 //!
 //! # Example
@@ -34,6 +36,7 @@ pub mod clusters;
 mod error;
 mod import;
 mod report;
+pub mod run;
 mod solve;
 mod structural;
 
