@@ -177,17 +177,20 @@ impl NativeModel {
     }
 
     /// `gcs solve --format json`'s line.
-    #[pyo3(signature = (tolerance=1e-9, max_iterations=500))]
+    #[pyo3(signature = (tolerance=1e-9, max_iterations=500, max_unknowns=None))]
     fn solve_json(
         &self,
         py: Python<'_>,
         tolerance: f64,
         max_iterations: usize,
+        max_unknowns: Option<usize>,
     ) -> PyResult<String> {
+        let default = gcs_solve::SolveOptions::default();
         let options = gcs_solve::SolveOptions {
             tolerance,
             max_iterations,
-            ..gcs_solve::SolveOptions::default()
+            max_unknowns: max_unknowns.unwrap_or(default.max_unknowns),
+            ..default
         };
         let system = &self.model.system;
         let result = py.detach(|| {

@@ -37,7 +37,9 @@ pub enum WitnessSource {
     Generated,
     /// No rational witness could be constructed (a tangency, a mirror or an intersection of
     /// circles needs a square root there); constructed over the integers modulo 2^61 − 1,
-    /// where square roots exist for half the residues. Its coordinates are residues: only the
+    /// where square roots exist for half the residues (or modulo a further witness prime when
+    /// the root the shape forces is none there: [`Witness::modulus`]). Its coordinates are
+    /// residues: only the
     /// prime field analyses at it, exactly with overwhelming probability (a random point of
     /// the solution set has the generic rank unless it falls on the hypersurface where the
     /// minors of that rank vanish).
@@ -110,7 +112,8 @@ impl Witness {
     ///
     /// # Errors
     /// When a coordinate has no image in `F` (a denominator divisible by the prime), and for a
-    /// modular witness in any field but [`ModP`] ([`JacobianError::ModularWitness`]).
+    /// modular witness in any field but its own ([`ModP`] for 2^61 − 1, [`ModQ`] inside
+    /// [`gcs_rank::with_modulus`] of a further witness prime: [`JacobianError::ModularWitness`]).
     pub fn coords_in<F: Field>(&self) -> Result<Vec<F>, JacobianError> {
         if self.source == WitnessSource::Modular && !self.in_its_field::<F>() {
             return Err(JacobianError::ModularWitness { field: F::NAME });
@@ -119,24 +122,13 @@ impl Witness {
     }
 
     /// Whether `F` is the field of this modular witness: [`ModP`] for the Mersenne prime, and
-    /// [`ModQ`] inside [`gcs_rank::with_modulus`] of its prime (see [`Witness::in_field`]).
+    /// [`ModQ`] inside [`gcs_rank::with_modulus`] of its prime (the analysis of a modular
+    /// witness over a further prime runs there).
     fn in_its_field<F: Field>(&self) -> bool {
         let modulus = self.modulus.unwrap_or(ModP::PRIME);
         let is = |t: std::any::TypeId| std::any::TypeId::of::<F>() == t;
         (is(std::any::TypeId::of::<ModP>()) && modulus == ModP::PRIME)
             || (is(std::any::TypeId::of::<ModQ>()) && gcs_rank::modulus() == modulus)
-    }
-
-    /// Runs `f` where the witness's numbers mean what they say: for a modular witness over a
-    /// prime other than [`ModP`]'s, inside [`gcs_rank::with_modulus`] of that prime, where the
-    /// witness's field is [`ModQ`] (`gcs_rank::modulus() != ModP::PRIME` tells the two apart).
-    pub fn in_field<R>(&self, f: impl FnOnce() -> R) -> R {
-        match self.modulus {
-            Some(q) if self.source == WitnessSource::Modular && q != ModP::PRIME => {
-                gcs_rank::with_modulus(q, f)
-            }
-            _ => f(),
-        }
     }
 
     /// The Jacobian at this witness, in the field `F`.

@@ -209,11 +209,16 @@ class Model:
         line = self._native.analyze_json(backend, tolerance, seed, structural, decompose)
         return Report(json.loads(line))
 
-    def solve(self, tolerance: float = 1e-9, max_iterations: int = 500) -> SolveReport:
+    def solve(
+        self, tolerance: float = 1e-9, max_iterations: int = 500, max_unknowns: int | None = None
+    ) -> SolveReport:
         """The solve at the values from the drawing, as ``gcs solve --format json`` gives it:
         the status, the solved entities, each redundant constraint consistent or conflicting.
+        ``max_unknowns`` bounds the size of the model the solver takes (default: the solver's);
+        a larger model raises :class:`SolveError`.
         """
-        return SolveReport(json.loads(self._native.solve_json(tolerance, max_iterations)))
+        line = self._native.solve_json(tolerance, max_iterations, max_unknowns)
+        return SolveReport(json.loads(line))
 
     def jacobian(self, backend: str = "exact", seed: int = 1, tolerance: float = 1e-9) -> Jacobian:
         """The Jacobian at the witness the analysis with these options takes (its rank is the
