@@ -8,8 +8,8 @@ use gcs_jacobian::{
 use gcs_model::{ConstraintIdx, System};
 use gcs_rank::{
     AMBIGUITY_BAND, BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP, ModQ,
-    Proof, Rat, RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact,
-    analyse_rows_with_margins, certify_rows, echelon_rank, float_rank_qr,
+    Proof, Rat, RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact, analyse_rows_plain,
+    analyse_rows_with_margins, certify_rows, float_rank_qr,
 };
 
 use gcs_decompose::{
@@ -399,9 +399,7 @@ fn generic<F: Field>(
     let options_tolerance = options.tolerance;
     let n = jacobian.rows.len();
     let internal = jacobian.internal_count();
-    // Tracking combinations costs far more than the elimination (they fill in): find the rank
-    // first and track only when some row turns out dependent. Exact fields find it in plain
-    // row echelon form (no back-substitution); floats in the reduced form with the tolerance.
+    // Floats in the reduced form with the tolerance; exact fields in plain row echelon form.
     if options_tolerance.is_some() {
         // The float path always tracks combinations: the margin of an independent row needs
         // the amplification of its reduction ([`Echelon::margin`]), which is what tells a
@@ -423,26 +421,9 @@ fn generic<F: Field>(
             internal,
         ));
     }
-    let quick = if options_tolerance.is_none() {
-        let (rank, pivots) = echelon_rank(jacobian.ncols, jacobian.rows.iter().cloned());
-        let outcomes = pivots
-            .into_iter()
-            .map(|p| {
-                p.map_or(Insertion::Dependent { combination: None }, |pivot| {
-                    Insertion::Independent { pivot }
-                })
-            })
-            .collect();
-        RowAnalysis { rank, outcomes }
-    } else {
-        let untracked = EchelonOptions { track_combinations: false, ..options.clone() };
-        analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), untracked)
-    };
-    let analysis = if quick.outcomes.iter().all(Insertion::is_independent) {
-        quick
-    } else {
-        analyse_rows(jacobian.ncols, jacobian.rows.iter().cloned(), options)
-    };
+    // Exact fields: plain row echelon form, dependencies by backward substitution through the
+    // multipliers (the reduced form's tracked combinations fill in to the dense inverse).
+    let analysis = analyse_rows_plain(jacobian.ncols, jacobian.rows.iter().cloned());
     Ok((
         Outcome {
             rank: analysis.rank,

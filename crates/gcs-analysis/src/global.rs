@@ -28,8 +28,8 @@
 //!   Whiteley (2010): an infinitesimally rigid configuration (any, generic or not) with such a
 //!   stress already proves it.
 //!
-//! The stress is a uniformly random vector of the left kernel of `R` ([`random_kernel_vector`]
-//! on `Rᵀ`), and both ranks are taken modulo `p = 2^61 − 1` ([`ModP`]), first at the analysis'
+//! The stress is a uniformly random vector of the left kernel of `R`
+//! ([`random_left_kernel_vector`]: from the dependencies of `R`'s rows), and both ranks are taken modulo `p = 2^61 − 1` ([`ModP`]), first at the analysis'
 //! witness, then, when that says no, at a uniformly random configuration modulo `p` (a second
 //! draw of both the configuration and the stress).
 //!
@@ -43,6 +43,15 @@
 //! Schwartz–Zippel bounds by `((n−d−1)(r+1) + r) / p` ([`GlobalRigidity::error_bound`]: about
 //! 10^-12 at a thousand points in 2D).
 //!
+//! **A shortcut for the common *no*.** A globally rigid framework is redundantly rigid
+//! (Hendrickson 1992): every bar lies in a circuit, so a random stress is nonzero on every bar.
+//! When the random stress leaves a bar at zero, the stress matrix is not formed (its
+//! elimination is the costly part, the fill-in of a Cholesky factorisation of the graph) and the
+//! answer is *no* (`unstressed_bars`). Wrongly so only if the bar is stressed generically: its
+//! stress coefficient, times the minor that clears the denominators of the Cramer stresses, is
+//! a nonzero polynomial of degree at most `r + 1`, and with that minor's `r` the bound is
+//! `(2r + 1)/p`, within the bound above whenever `n ≥ d + 2`.
+//!
 //! The float backend takes the same ranks in `f64` at the (possibly approximate) witness with
 //! its tolerance: an approximate answer, no bound.
 
@@ -51,7 +60,7 @@ use gcs_model::rng::SplitMix64;
 use gcs_model::{ConstraintIdx, EntityIdx, EntityKind, Metric, Signature, System};
 use gcs_rank::{
     Echelon, EchelonOptions, Field, ModP, ModQ, PrimeField, SparseRow, echelon_rank,
-    random_kernel_vector,
+    random_left_kernel_vector,
 };
 
 use crate::analysis::{Arithmetic, Backend};
@@ -89,8 +98,13 @@ pub struct GlobalRigidity {
     pub bars: usize,
     /// Whether the framework is rigid (rank of its rigidity matrix).
     pub rigid: bool,
-    /// The rank of the stress matrix found (0 when not computed: not rigid, or `n ≤ d + 1`).
+    /// The rank of the stress matrix found (0 when not computed: not rigid, `n ≤ d + 1`, or
+    /// some bar unstressed).
     pub stress_rank: usize,
+    /// Bars that the random stress leaves at zero (modulo `p` only; 0 in float): each lies in no
+    /// circuit, so removing it leaves the framework flexible — not redundantly rigid, hence not
+    /// globally rigid (Hendrickson's necessary condition), decided without the stress matrix.
+    pub unstressed_bars: usize,
     /// The rank that proves global rigidity: `n − d − 1` (0 for `n ≤ d + 1`).
     pub target_rank: usize,
     /// Whether the answer was decided at a random configuration (the witness said no).
@@ -194,6 +208,8 @@ fn target_rank(n: usize, d: usize) -> usize {
 struct Draw {
     rank: usize,
     stress_rank: usize,
+    /// Bars the random stress leaves at zero (then the stress matrix is not formed).
+    unstressed: usize,
 }
 
 /// A graph in dimension `d`: `n` vertices, bars between them.
@@ -219,6 +235,23 @@ fn transposed_rows<F: Field>(f: Graph<'_>, x: &[Vec<F>]) -> Vec<SparseRow<F>> {
     rows.into_iter().map(SparseRow::from_entries).collect()
 }
 
+/// The rows of `R` (one per bar, columns the vertex coordinates) at `x`.
+fn bar_rows<F: Field>(f: Graph<'_>, x: &[Vec<F>]) -> Vec<SparseRow<F>> {
+    let d = f.d;
+    f.bars
+        .iter()
+        .map(|&(u, v)| {
+            let mut entries = Vec::with_capacity(2 * d);
+            for k in 0..d {
+                let diff = x[u][k].sub(&x[v][k]);
+                entries.push((d * v + k, diff.neg()));
+                entries.push((d * u + k, diff));
+            }
+            SparseRow::from_entries(entries)
+        })
+        .collect()
+}
+
 /// The rows of the stress matrix of `omega`.
 fn stress_rows<F: Field>(f: Graph<'_>, omega: &[F]) -> Vec<SparseRow<F>> {
     let mut rows: Vec<Vec<(usize, F)>> = vec![Vec::new(); f.n];
@@ -233,14 +266,21 @@ fn stress_rows<F: Field>(f: Graph<'_>, omega: &[F]) -> Vec<SparseRow<F>> {
 
 /// One draw modulo `p` at `x`.
 fn draw_modp<F: PrimeField>(f: Graph<'_>, x: &[Vec<F>], rng: &mut SplitMix64) -> Draw {
-    let (n, d, m) = (f.n, f.d, f.bars.len());
+    let (n, d) = (f.n, f.d);
     let mut random = || F::residue(rng.below(F::prime()));
-    let (rank, omega) = random_kernel_vector(m, transposed_rows(f, x), &mut random);
+    let (rank, omega) = random_left_kernel_vector(d * n, bar_rows(f, x), &mut random);
     if rank < rigid_rank(n, d) || target_rank(n, d) == 0 {
-        return Draw { rank, stress_rank: 0 };
+        return Draw { rank, stress_rank: 0, unstressed: 0 };
+    }
+    // A bar no stress reaches is not redundant: the framework is not redundantly rigid, hence
+    // not globally rigid (Hendrickson), and the stress matrix — the costly part, its
+    // elimination fills in as a Cholesky factorisation of the graph — need not be formed.
+    let unstressed = omega.iter().filter(|w| w.is_zero()).count();
+    if unstressed > 0 {
+        return Draw { rank, stress_rank: 0, unstressed };
     }
     let (stress_rank, _) = echelon_rank(n, stress_rows(f, &omega));
-    Draw { rank, stress_rank }
+    Draw { rank, stress_rank, unstressed }
 }
 
 /// One draw in `f64` at `x`: ranks by elimination with the relative `tolerance`.
@@ -253,7 +293,7 @@ fn draw_float(f: Graph<'_>, x: &[Vec<f64>], tolerance: f64, rng: &mut SplitMix64
     }
     let rank = e.rank();
     if rank < rigid_rank(n, d) || target_rank(n, d) == 0 {
-        return Draw { rank, stress_rank: 0 };
+        return Draw { rank, stress_rank: 0, unstressed: 0 };
     }
     let mut omega = vec![0.0; m];
     for b in e.kernel_basis() {
@@ -266,7 +306,7 @@ fn draw_float(f: Graph<'_>, x: &[Vec<f64>], tolerance: f64, rng: &mut SplitMix64
     for row in stress_rows(f, &omega) {
         s.insert(row);
     }
-    Draw { rank, stress_rank: s.rank() }
+    Draw { rank, stress_rank: s.rank(), unstressed: 0 }
 }
 
 /// The vertices' coordinates at the witness, in `F` (`None` when some has no image in `F`).
@@ -367,6 +407,7 @@ fn answer(g: Graph<'_>, draw: Draw, arithmetic: Arithmetic, random: bool) -> Glo
         bars: g.bars.len(),
         rigid,
         stress_rank: draw.stress_rank,
+        unstressed_bars: draw.unstressed,
         target_rank: target,
         random_configuration: random,
         error_bound,

@@ -146,6 +146,29 @@ fn k55_is_redundantly_rigid_but_its_stresses_fall_short() {
     let g = a.global_rigidity.unwrap();
     assert_eq!((g.target_rank, g.globally_rigid), (6, false));
     assert!(g.stress_rank < 6 && g.random_configuration);
+    // Every bar is stressed: the stress matrix had to be formed.
+    assert_eq!(g.unstressed_bars, 0);
+}
+
+/// K4 with a vertex hanging on two of its corners: rigid, one redundant bar, but the two bars
+/// of the hanging vertex lie in no circuit. The random stress leaves them at zero, which
+/// decides *no* without the stress matrix (Hendrickson), in both exact backends.
+#[test]
+fn unstressed_bars_decide_no_without_the_stress_matrix() {
+    let mut edges = complete(4);
+    edges.extend([(0, 4), (1, 4)]);
+    for backend in [Backend::Exact, Backend::ModP] {
+        let s = model("K4 and a hanging vertex", Dim::Two, &edges, 3);
+        let a = analyze(&s, &AnalysisOptions { backend, ..AnalysisOptions::default() }).unwrap();
+        let g = a.global_rigidity.unwrap();
+        assert!(g.rigid && !g.globally_rigid, "{g:?}");
+        assert_eq!((g.unstressed_bars, g.stress_rank), (2, 0), "{g:?}");
+        assert!(g.random_configuration && g.error_bound.is_some_and(|b| b < 1e-15));
+    }
+    // Without the hanging vertex: every bar stressed, and the stress matrix says yes.
+    let s = model("K4", Dim::Two, &complete(4), 3);
+    let g = analyze(&s, &AnalysisOptions::default()).unwrap().global_rigidity.unwrap();
+    assert!(g.globally_rigid && g.unstressed_bars == 0 && g.stress_rank == 1, "{g:?}");
 }
 
 fn builder_k4(dim: Dim, split: bool, fixes: usize) -> System {

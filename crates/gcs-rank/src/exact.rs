@@ -267,8 +267,9 @@ impl Lift {
 /// [`Proof::Rational`].
 ///
 /// The returned combinations (when `track_combinations`) are over ℚ, exact, and equal to those
-/// of [`analyse_rows`] over [`BigRational`]. The pivot columns are those found mod `p`: they
-/// always form a valid (nonsingular) pivot set over ℚ, and equal the rational elimination's
+/// of [`analyse_rows`] over [`BigRational`]. The pivot columns are those found mod `p` in plain
+/// row echelon form ([`analyse_rows_plain`](crate::analyse_rows_plain): leading columns): they
+/// always form a valid (nonsingular) pivot set over ℚ, and equal a plain rational elimination's
 /// choice unless `p` divides one of the reduced entries.
 ///
 /// Rows with entries at or beyond `ncols` extend the matrix, as in
@@ -404,23 +405,22 @@ fn certify(
     for row in rows {
         images.push(row.map(ModP::from_rational).ok()?);
     }
-    // Without dependencies there is nothing to lift: the pivots found modulo p prove that every
-    // row is independent over ℚ. Tracking combinations costs much more than the elimination
-    // (they fill in), so look first. `echelon_rank` ignores entries at or beyond `ncols`: such
-    // rows can only lower the rank found here, and then the full analysis below (which extends
-    // the matrix) runs.
-    let (rank, pivots) = crate::echelon_rank(ncols, images.iter().cloned());
-    if rank == rows.len() {
-        let outcomes =
-            pivots.into_iter().map(|p| Outcome::Independent { pivot: p.unwrap_or(0) }).collect();
+    // The elimination modulo p, in plain row echelon form: its pivots prove the lower bound,
+    // and without dependencies there is nothing to lift. (The reduced form with tracked
+    // combinations would fill in to the dense inverse of the basis.)
+    let first: RowAnalysis<ModP> = crate::analyse_rows_plain(ncols, images.iter().cloned());
+    if first.rank == rows.len() {
+        let outcomes = first
+            .outcomes
+            .iter()
+            .map(|o| Outcome::Independent { pivot: o.pivot().unwrap_or(0) })
+            .collect();
         return Some(Core {
-            rank,
+            rank: first.rank,
             outcomes,
             proof: Proof::ModularCertified { prime: ModP::PRIME },
         });
     }
-    let first: RowAnalysis<ModP> =
-        analyse_rows(ncols, images.iter().cloned(), EchelonOptions::tracked());
     let mut kernel = KernelCertifier::new(hint, &first, rows);
     let mut primes_used = 1;
     let mut by_kernel = 0;

@@ -120,7 +120,7 @@ pub use float::float_rank_qr;
 pub use lsq::{LmOptions, LmOutcome, Residuals, levenberg_marquardt};
 pub use modp::{ModP, ModPrime, ModQ, PrimeField, WITNESS_PRIMES, modulus, with_modulus};
 pub use num_rational::BigRational;
-pub use rank::{echelon_rank, random_kernel_vector};
+pub use rank::{analyse_rows_plain, echelon_rank, random_kernel_vector, random_left_kernel_vector};
 pub use rat::Rat;
 #[cfg(feature = "rug")]
 pub use rug_field::{big_to_rug, rug_to_big};

@@ -259,8 +259,12 @@ pub struct GlobalRigidityReport {
     pub bars: usize,
     /// Whether the framework is rigid.
     pub rigid: bool,
-    /// The rank of the random stress matrix.
+    /// The rank of the random stress matrix (0 when not formed).
     pub stress_rank: usize,
+    /// Bars the random stress leaves at zero: not redundant, so not globally rigid, decided
+    /// without the stress matrix (Hendrickson).
+    #[serde(default)]
+    pub unstressed_bars: usize,
     /// The rank that proves global rigidity: `n − d − 1`.
     pub target_rank: usize,
     /// `witness` or `random`: the configuration the answer was decided at.
@@ -278,6 +282,7 @@ impl From<&GlobalRigidity> for GlobalRigidityReport {
             bars: g.bars,
             rigid: g.rigid,
             stress_rank: g.stress_rank,
+            unstressed_bars: g.unstressed_bars,
             target_rank: g.target_rank,
             configuration: if g.random_configuration { "random" } else { "witness" }.to_owned(),
             error_bound: g.error_bound,
