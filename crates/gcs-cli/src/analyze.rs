@@ -27,6 +27,18 @@ pub(crate) struct Settings {
     pub(crate) jobs: usize,
     /// Only this shard of the inputs (`--shard i/n`).
     pub(crate) shard: Option<(usize, usize)>,
+    /// Each model in a process of its own, stopped after a time limit (`--timeout`).
+    pub(crate) timeout: Option<Timeout>,
+    /// Only the model at this index of each file (`--only-model`, what a model's own process
+    /// runs).
+    pub(crate) only_model: Option<usize>,
+}
+
+/// `--timeout`: the limit per model, and the arguments of `gcs` that analyse one model the way
+/// this command would (the model's index and path are added).
+pub(crate) struct Timeout {
+    pub(crate) limit: std::time::Duration,
+    pub(crate) child_args: Vec<String>,
 }
 
 /// What to tell a user whose exact analysis found only an approximate witness.
@@ -67,6 +79,44 @@ fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> 
     Ok((report, dot))
 }
 
+/// Model `index` of `path` analysed by `gcs` in a process of its own, stopped when
+/// `timeout.limit` is up: its report as the process printed it, or the message of why it failed
+/// (its own, the limit, or how the process ended). `at` names the model in messages.
+fn in_own_process(
+    at: &str,
+    path: &std::path::Path,
+    index: usize,
+    timeout: &Timeout,
+    format: Format,
+) -> Outcome {
+    let exe = std::env::current_exe().map_err(|e| format!("{at}: cannot run gcs again: {e}"))?;
+    let mut args = timeout.child_args.clone();
+    args.extend(["--jobs".to_owned(), "1".to_owned(), "--only-model".to_owned()]);
+    args.push(index.to_string());
+    let ran = batch::run_with_limit(&exe, &args, path, timeout.limit)
+        .map_err(|e| format!("{at}: cannot run gcs again: {e}"))?;
+    let Some((status, stdout, stderr)) = ran else {
+        let limit = timeout.limit.as_secs_f64();
+        return Err(format!("{at}: stopped after {limit} s (the limit set by --timeout)"));
+    };
+    let stdout = stdout.trim_end().to_owned();
+    match status.code() {
+        Some(0) => Ok((stdout, String::new())),
+        // The model failed: its message, as the process reported it (on standard output in
+        // JSON, on standard error in text).
+        Some(1) => Err(match format {
+            Format::Json => serde_json::from_str::<serde_json::Value>(&stdout)
+                .ok()
+                .and_then(|v| v.get("error").and_then(|e| e.as_str()).map(str::to_owned))
+                .unwrap_or(stdout),
+            Format::Text => {
+                stderr.trim_end().strip_prefix("error: ").unwrap_or(stderr.trim_end()).to_owned()
+            }
+        }),
+        _ => Err(format!("{at}: the analysis ended abnormally ({status}): {}", stderr.trim_end())),
+    }
+}
+
 pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     let started = std::time::Instant::now();
     let inputs = batch::shard(batch::expand(paths), settings.shard);
@@ -76,8 +126,15 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
     let work = |input: &batch::Input| -> Vec<(String, Outcome)> {
         batch::input_models(input)
             .into_iter()
-            .map(|(file, model)| {
-                let outcome = one(&file, model, settings);
+            .enumerate()
+            .filter(|(k, _)| settings.only_model.is_none_or(|only| only == *k))
+            .map(|(k, (file, model))| {
+                let outcome = match (&settings.timeout, input, model) {
+                    (Some(timeout), batch::Input::File(path), Ok(model)) => {
+                        in_own_process(&model.at(&file), path, k, timeout, settings.format)
+                    }
+                    (_, _, model) => one(&file, model, settings),
+                };
                 (file, outcome)
             })
             .collect()

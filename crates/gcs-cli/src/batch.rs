@@ -165,6 +165,56 @@ pub(crate) fn input_models(input: &Input) -> Vec<(String, Result<Model, String>)
     }
 }
 
+/// Runs `exe args path` with its output captured, and stops it when `limit` is up: `None` then,
+/// otherwise its exit status, standard output and standard error.
+///
+/// # Errors
+/// When the process cannot be started.
+pub(crate) fn run_with_limit(
+    exe: &Path,
+    args: &[String],
+    path: &Path,
+    limit: std::time::Duration,
+) -> io::Result<Option<(std::process::ExitStatus, String, String)>> {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(exe)
+        .args(args)
+        .arg(path)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    // Both pipes are drained on threads of their own (a full pipe would stall the process);
+    // standard output reaching its end tells that the process is done.
+    let (tx, rx) = std::sync::mpsc::channel();
+    let mut stdout = child.stdout.take();
+    let out_reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        if let Some(pipe) = stdout.as_mut() {
+            let _ = pipe.read_to_string(&mut text);
+        }
+        let _ = tx.send(());
+        text
+    });
+    let mut stderr = child.stderr.take();
+    let err_reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        if let Some(pipe) = stderr.as_mut() {
+            let _ = pipe.read_to_string(&mut text);
+        }
+        text
+    });
+    let finished = rx.recv_timeout(limit).is_ok();
+    if !finished {
+        let _ = child.kill();
+    }
+    let status = child.wait()?;
+    let stdout = out_reader.join().unwrap_or_default();
+    let stderr = err_reader.join().unwrap_or_default();
+    Ok(finished.then_some((status, stdout, stderr)))
+}
+
 /// Runs `work` on every item on `jobs` threads and hands the results to `emit` in the items'
 /// order, each as soon as it and every one before it are done (so the output is the
 /// sequential run's, streamed). A panic in `work` (there should be none) becomes

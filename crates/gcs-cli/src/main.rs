@@ -35,6 +35,14 @@ struct Cli {
     command: Command,
 }
 
+/// `--timeout SECONDS`: a positive finite number of seconds.
+fn parse_timeout(text: &str) -> Result<std::time::Duration, String> {
+    match text.parse::<f64>() {
+        Ok(s) if s.is_finite() && s > 0.0 => Ok(std::time::Duration::from_secs_f64(s)),
+        _ => Err(format!("`{text}` is not a positive number of seconds")),
+    }
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Analyse models by the witness method: rank, degrees of freedom, trivial motions and
@@ -82,6 +90,15 @@ enum Command {
         /// array, a Kubernetes indexed Job, GNU parallel) together analyse every input once.
         #[arg(long, value_name = "I/N", value_parser = batch::parse_shard)]
         shard: Option<(usize, usize)>,
+        /// Give each model at most this many seconds: a model over it gets an error line naming
+        /// the limit and the batch goes on. Each model is then analysed in a process of its own
+        /// (a few milliseconds more per model), which is stopped when its time is up.
+        #[arg(long, value_name = "SECONDS", value_parser = parse_timeout)]
+        timeout: Option<std::time::Duration>,
+        /// Analyse only the model at this index (from 0) of each file: what `--timeout` runs
+        /// in each process.
+        #[arg(long, value_name = "K", hide = true)]
+        only_model: Option<usize>,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -207,12 +224,15 @@ fn main() -> ExitCode {
             dot,
             jobs,
             shard,
+            timeout,
+            only_model,
             paths,
         } => {
             if !(tolerance.is_finite() && tolerance >= 0.0) {
                 eprintln!("error: --tolerance must be a finite number ≥ 0");
                 return ExitCode::from(2);
             }
+            let backend_arg = backend;
             let backend = match backend {
                 BackendArg::Exact => Backend::Exact,
                 BackendArg::Rational => Backend::Rational,
@@ -227,6 +247,31 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
             let decompose = decompose || dot.is_some();
+            if timeout.is_some() && dot.is_some() {
+                eprintln!("error: --timeout and --dot cannot be combined");
+                return ExitCode::from(2);
+            }
+            // What each model's own process is run with under --timeout.
+            let name = |v: Option<clap::builder::PossibleValue>| {
+                v.map(|v| v.get_name().to_owned()).unwrap_or_default()
+            };
+            let mut child_args = vec![
+                "analyze".to_owned(),
+                "--backend".to_owned(),
+                name(backend_arg.to_possible_value()),
+                "--tolerance".to_owned(),
+                tolerance.to_string(),
+                "--seed".to_owned(),
+                seed.to_string(),
+                "--format".to_owned(),
+                name(format.to_possible_value()),
+            ];
+            if structural {
+                child_args.push("--structural".to_owned());
+            }
+            if decompose {
+                child_args.push("--decompose".to_owned());
+            }
             analyze::run(
                 &paths,
                 &analyze::Settings {
@@ -240,6 +285,8 @@ fn main() -> ExitCode {
                         std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
                     }),
                     shard,
+                    timeout: timeout.map(|limit| analyze::Timeout { limit, child_args }),
+                    only_model,
                 },
             )
         }

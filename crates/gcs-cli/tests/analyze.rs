@@ -470,3 +470,59 @@ fn parallel_and_sharded_batches_are_the_sequential_run() {
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("0 ≤ i < n"), "{stderr}");
 }
+
+/// `--timeout`: a model over the limit gets an error line naming it and the batch goes on with
+/// the next file; the models within it are reported exactly as without the limit (text and
+/// JSON, a CAD file's several sketches included); a bad limit or `--dot` beside it is a usage
+/// error.
+#[test]
+fn a_model_over_the_timeout_gets_an_error_line_and_the_batch_goes_on() {
+    let dir = std::env::temp_dir().join(format!("gcs-timeout-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A 5,000-point framework takes seconds; the limit is a tenth of one.
+    let (code, big, _) = gcs(&["generate", "laman-sketch", "5000"]);
+    assert_eq!(code, 0);
+    std::fs::write(dir.join("b_big.ron"), big).unwrap();
+    for name in ["kite", "chain"] {
+        let text = std::fs::read_to_string(root().join(format!("data/paper/{name}.ron"))).unwrap();
+        std::fs::write(dir.join(format!("{}_{name}.ron", &name[..1])), text).unwrap();
+    }
+    let path = dir.to_str().unwrap();
+    let (code, stdout, _) = gcs(&["analyze", "--format", "json", "--timeout", "0.1", path]);
+    assert_eq!(code, 1, "{stdout}");
+    let lines = json_lines(&stdout);
+    assert_eq!(lines.len(), 3, "{stdout}");
+    // In sorted order: b_big.ron, c_chain.ron, k_kite.ron.
+    assert_eq!(lines[1]["model"], "chain");
+    assert_eq!(lines[2]["model"], "kite");
+    let error = string(&lines[0], "error");
+    assert!(
+        error.ends_with("b_big.ron: stopped after 0.1 s (the limit set by --timeout)"),
+        "{error}"
+    );
+
+    // Within the limit: the same reports as without it.
+    let files = ["data/paper/kite.ron", "data/cad/bracket.json", "data/cad/plate.FCStd"];
+    for format in ["json", "text"] {
+        let mut plain = vec!["analyze", "--format", format];
+        plain.extend(files);
+        let mut limited = vec!["analyze", "--format", format, "--timeout", "60"];
+        limited.extend(files);
+        assert_eq!(gcs(&limited), gcs(&plain), "{format}");
+    }
+    // A file that cannot be read fails the same way with the limit.
+    let bad = ["analyze", "--format", "json", "crates/gcs-model/tests/bad/unknown_id.ron"];
+    let with_limit = [&bad[..], &["--timeout", "5"]].concat();
+    assert_eq!(gcs(&with_limit), gcs(&bad));
+
+    for args in
+        [&["--timeout", "0"][..], &["--timeout", "soon"], &["--timeout", "5", "--dot", "x.dot"]]
+    {
+        let mut all = vec!["analyze"];
+        all.extend(args);
+        all.push(path);
+        let (code, _, stderr) = gcs(&all);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
