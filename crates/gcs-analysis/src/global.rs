@@ -242,8 +242,8 @@ fn bar_rows<F: Field>(f: Graph<'_>, x: &[Vec<F>]) -> Vec<SparseRow<F>> {
         .iter()
         .map(|&(u, v)| {
             let mut entries = Vec::with_capacity(2 * d);
-            for k in 0..d {
-                let diff = x[u][k].sub(&x[v][k]);
+            for (k, (a, b)) in x[u].iter().zip(&x[v]).enumerate() {
+                let diff = a.sub(b);
                 entries.push((d * v + k, diff.neg()));
                 entries.push((d * u + k, diff));
             }
