@@ -35,6 +35,12 @@ struct Cli {
     command: Command,
 }
 
+/// `--choose STEP=K`: a plan step's index and a candidate.
+fn parse_choice(text: &str) -> Result<(usize, usize), String> {
+    let parsed = text.split_once('=').and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)));
+    parsed.ok_or_else(|| format!("`{text}` is not STEP=K (two whole numbers, e.g. 3=1)"))
+}
+
 /// `--timeout SECONDS`: a positive finite number of seconds.
 fn parse_timeout(text: &str) -> Result<std::time::Duration, String> {
     match text.parse::<f64>() {
@@ -131,6 +137,19 @@ enum Command {
         /// analyze`).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Also list the other realizations (`solutions`): the core as solved, and each point
+        /// placed by two distances on either side of its two anchors, every combination under
+        /// which the consistent redundant constraints still hold (mirror images distinct).
+        #[arg(long)]
+        all: bool,
+        /// With --all: list at most N realizations (`truncated` says when there were more).
+        #[arg(long, value_name = "N", default_value_t = 64)]
+        max_solutions: usize,
+        /// Fix the choice of a closed-form step: STEP=K places step STEP of the `plan` list (its
+        /// index, from 0) at its candidate K (0: left of the line from its first anchor to its
+        /// second, 1: right). Repeatable; the other steps follow the drawing.
+        #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
+        choose: Vec<(usize, usize)>,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -213,7 +232,14 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
         Command::Convert { input, output } => convert::run(&input, output.as_deref()),
-        Command::Solve { format, out, paths } => solve::run(&paths, format, out.as_deref()),
+        Command::Solve { format, out, all, max_solutions, choose, paths } => {
+            let options = gcs_solve::SolveOptions {
+                all: all.then_some(max_solutions),
+                choose,
+                ..gcs_solve::SolveOptions::default()
+            };
+            solve::run(&paths, format, out.as_deref(), &options)
+        }
         Command::Analyze {
             backend,
             seed,

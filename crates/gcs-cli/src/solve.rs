@@ -9,15 +9,19 @@ use gcs_solve::{SolveOptions, solved_system};
 use crate::Format;
 use crate::batch::{self, Out};
 
-pub(crate) fn run(paths: &[PathBuf], format: Format, out_dir: Option<&Path>) -> ExitCode {
+pub(crate) fn run(
+    paths: &[PathBuf],
+    format: Format,
+    out_dir: Option<&Path>,
+    options: &SolveOptions,
+) -> ExitCode {
     let mut out = Out::new();
     let mut failed = 0;
-    let options = SolveOptions::default();
     for (file, model) in batch::models(paths) {
         let result = model.and_then(|model| {
             let at = model.at(&file);
             let batch::Model { system, import } = model;
-            let (report, solution) = gcs_report::run::solve(&system, &file, import, &options)
+            let (report, solution) = gcs_report::run::solve(&system, &file, import, options)
                 .map_err(|e| format!("{at}: {e}"))?;
             if let Some(dir) = out_dir {
                 let path = dir.join(format!("{}.ron", system.name()));

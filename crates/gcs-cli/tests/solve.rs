@@ -100,3 +100,40 @@ fn analyze_tells_consistent_from_conflicting() {
     let r = redundant(&kite);
     assert_eq!((r["constraint"].as_str(), r["conflicting"].as_bool()), (Some("c6"), Some(false)));
 }
+
+/// `gcs solve --all`: the kite's realizations (two: its redundant distance prunes the folded
+/// ones), each in the shape of `entities`, every plan step complete; `--choose` fixes a side
+/// and marks the step, a step out of the plan is an error line, a malformed one a usage error.
+#[test]
+fn all_realizations_and_fixed_choices() {
+    let (code, out, err) = gcs(&["solve", "--all", "--format", "json", "data/paper/kite.ron"]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    let solutions = v["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 2, "{v}");
+    assert_eq!(v["truncated"], false);
+    let ids = |entities: &Value| -> Vec<String> {
+        entities.as_array().unwrap().iter().map(|e| e["id"].as_str().unwrap().to_owned()).collect()
+    };
+    for s in solutions {
+        assert_eq!(ids(s), ids(&v["entities"]));
+    }
+    assert!(v["plan"].as_array().unwrap().iter().all(|p| p["complete"] == true), "{v}");
+    let (_, text, _) = gcs(&["solve", "--all", "data/paper/kite.ron"]);
+    assert!(text.contains("realizations: 2 "), "{text}");
+
+    let (code, out, _) =
+        gcs(&["solve", "--choose", "1=1", "--format", "json", "data/paper/kite.ron"]);
+    assert_eq!(code, 0);
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(
+        (v["plan"][1]["fixed"].clone(), v["plan"][1]["chosen"].clone()),
+        (true.into(), 1.into())
+    );
+    assert!(v.get("solutions").is_none(), "listed only with --all");
+    let (code, _, err) = gcs(&["solve", "--choose", "9=0", "data/paper/kite.ron"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("cannot choose candidate 0 of step 9"), "{err}");
+    let (code, _, _) = gcs(&["solve", "--choose", "one=0", "data/paper/kite.ron"]);
+    assert_eq!(code, 2);
+}

@@ -50,6 +50,13 @@ pub struct PlanReport {
     pub chosen: Option<usize>,
     /// The constraints it satisfies (ids).
     pub constraints: Vec<String>,
+    /// Whether `candidates` are all the step's real solutions (closed form; a core of one
+    /// distance), not only the one reached from the drawing.
+    #[serde(default)]
+    pub complete: bool,
+    /// Whether the user fixed the choice (`--choose`).
+    #[serde(default)]
+    pub fixed: bool,
 }
 
 /// One model's solve report, in the order of its fields in the JSON line.
@@ -92,6 +99,13 @@ pub struct SolveReport {
     pub iterations: usize,
     /// The backend whose analysis named the redundant constraints.
     pub analysis_backend: String,
+    /// With `--all`: every realization found, each in the shape of `entities` (see
+    /// [`gcs_solve::Solution::solutions`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solutions: Option<Vec<Vec<Value>>>,
+    /// With `--all`: whether the enumeration stopped at `--max-solutions`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub truncated: Option<bool>,
     /// For a model read from a CAD file: the import section (flattened into the line).
     #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
     pub import: Option<crate::ImportReport>,
@@ -190,8 +204,13 @@ impl SolveReport {
                 candidates: p.candidates,
                 chosen: p.chosen,
                 constraints: p.constraints.iter().map(|c| id(*c)).collect(),
+                complete: p.complete,
+                fixed: p.fixed,
             })
             .collect();
+        let shape = |x: &[f64]| -> Vec<Value> {
+            system.entity_indices().filter_map(|e| entity_json(system, &layout, e, x)).collect()
+        };
         let redundant: Vec<CheckedReport> = solution
             .redundant
             .iter()
@@ -210,10 +229,7 @@ impl SolveReport {
             status: solution.status.name().to_owned(),
             max_residual: solution.max_residual,
             moved: solution.moved,
-            entities: system
-                .entity_indices()
-                .filter_map(|e| entity_json(system, &layout, e, &solution.x))
-                .collect(),
+            entities: shape(&solution.x),
             conflicting: redundant.iter().filter(|r| r.conflicting).cloned().collect(),
             redundant,
             no_solution,
@@ -225,6 +241,11 @@ impl SolveReport {
             scale: solution.scale,
             iterations: solution.iterations,
             analysis_backend: analysis_backend.to_owned(),
+            solutions: solution
+                .solutions
+                .as_ref()
+                .map(|all| all.iter().map(|x| shape(x)).collect()),
+            truncated: solution.solutions.as_ref().map(|_| solution.truncated),
             import: None,
         }
     }
@@ -282,9 +303,26 @@ impl SolveReport {
         let closed = self.plan.iter().filter(|p| p.method == "closed-form").count();
         if closed > 0 {
             out.push_str(&format!(
-                "  plan: {} step{}, {closed} of them a point by two distances in closed form, on the drawing's side\n",
+                "  plan: {} step{}, {closed} of them a point by two distances in closed form, on the drawing's side{}\n",
                 self.plan.len(),
                 if self.plan.len() == 1 { "" } else { "s" },
+                match self.plan.iter().filter(|p| p.fixed).count() {
+                    0 => String::new(),
+                    n => format!(" ({n} fixed by --choose)"),
+                },
+            ));
+        }
+        if let Some(solutions) = &self.solutions {
+            let fixed = self.plan.iter().filter(|p| p.fixed).count();
+            out.push_str(&format!(
+                "  realizations: {}{} (the core as solved, each point by two distances on either side{}; mirror images distinct)\n",
+                solutions.len(),
+                if self.truncated == Some(true) { ", more not listed (--max-solutions)" } else { "" },
+                match fixed {
+                    0 => String::new(),
+                    1 => ", one choice fixed".to_owned(),
+                    n => format!(", {n} choices fixed"),
+                },
             ));
         }
         if self.bound_hit {

@@ -54,6 +54,13 @@ pub struct SolveOptions {
     /// Whether to place the points given by two distances in closed form ([`plan`]); without
     /// it, the whole system is solved numerically.
     pub constructive: bool,
+    /// `Some(n)`: also enumerate the realizations the closed-form steps allow, at most `n`
+    /// ([`Solution::solutions`]); `None`: only the one the drawing shows.
+    pub all: Option<usize>,
+    /// Choices fixed by the user: `(k, c)` places closed-form step `k` of [`Solution::plan`]
+    /// (its index in that list) at its candidate `c`, whatever side the drawing shows; the other
+    /// steps are chosen by the drawing, with backtracking. Enumeration keeps them too.
+    pub choose: Vec<(usize, usize)>,
 }
 
 impl Default for SolveOptions {
@@ -63,6 +70,8 @@ impl Default for SolveOptions {
             max_iterations: 500,
             max_unknowns: 1_000_000,
             constructive: true,
+            all: None,
+            choose: Vec::new(),
         }
     }
 }
@@ -139,6 +148,15 @@ pub struct Solution {
     pub backtracked: usize,
     /// Whether backtracking stopped at its bound with a step still without a candidate.
     pub bound_hit: bool,
+    /// With [`SolveOptions::all`]: the realizations found, each over the layout's columns like
+    /// `x` — the core as solved (the reference: realizations are counted up to moving the whole,
+    /// mirror images distinct), then every combination of the closed-form steps' real
+    /// candidates (the fixed choices kept) under which every consistent redundant constraint
+    /// still holds within its allowance; in the order of the candidates, the first step
+    /// outermost. `None` without it.
+    pub solutions: Option<Vec<Vec<f64>>>,
+    /// Whether the enumeration stopped at [`SolveOptions::all`]'s limit.
+    pub truncated: bool,
 }
 
 /// A part of the system that has no real solution (with the choices made for the rest).
@@ -185,6 +203,12 @@ pub struct PlanStep {
     /// The candidate kept (`None` when there was none): closed-form candidate 0 lies to the
     /// left of the directed line from the first anchor to the second, 1 to the right.
     pub chosen: Option<usize>,
+    /// Whether `candidates` are all the real solutions of the step (given the steps before it):
+    /// true for a closed-form step and for a core of one distance; false for a core solved
+    /// numerically, where one solution is found from the drawing and others may exist.
+    pub complete: bool,
+    /// Whether the user fixed the choice ([`SolveOptions::choose`]).
+    pub fixed: bool,
 }
 
 /// Why a system was not solved.
@@ -197,6 +221,16 @@ pub enum SolveError {
         unknowns: usize,
         /// The limit.
         max: usize,
+    },
+    /// A fixed choice ([`SolveOptions::choose`]) that the plan does not offer.
+    #[error("cannot choose candidate {candidate} of step {step}: {why}")]
+    Choice {
+        /// The step's index in the plan.
+        step: usize,
+        /// The candidate asked for.
+        candidate: usize,
+        /// Why not: the plan's steps and their candidates.
+        why: String,
     },
 }
 
@@ -492,6 +526,7 @@ fn place(
     x0: &[f64],
     x: &[f64],
     flip: bool,
+    forced: Option<usize>,
 ) -> Placed {
     let [a, b] = step.anchors.map(|e| at(layout, x, e));
     let [ra, rb] = step.constraints.map(|c| value(system, c));
@@ -507,8 +542,13 @@ fn place(
         _ if !flat => Some(if side > 0.0 { 0 } else { 1 }),
         _ => Some(if norm(candidates[0], drawn) <= norm(candidates[1], drawn) { 0 } else { 1 }),
     };
-    // Backtracking takes the other candidate.
-    let chosen = if flip && candidates.len() == 2 { chosen.map(|k| 1 - k) } else { chosen };
+    // Backtracking takes the other candidate; a fixed choice stands (none when the step has
+    // fewer candidates than it names).
+    let chosen = match forced {
+        Some(k) => (k < candidates.len()).then_some(k),
+        None if flip && candidates.len() == 2 => chosen.map(|k| 1 - k),
+        None => chosen,
+    };
     Placed {
         at: chosen.map_or_else(|| closed::nearest_to_both(a, ra, b, rb), |k| candidates[k]),
         candidates: candidates.len(),
@@ -637,13 +677,46 @@ pub fn solve(
         }
         entities.sort();
         entities.dedup();
+        // One distance between two points: its one realization up to moving it is all.
+        let complete = match construction.core.as_slice() {
+            [c] => {
+                let kind = system.constraint(*c).kind;
+                kind == gcs_model::ConstraintKind::Distance && entities.len() == 2
+            }
+            _ => false,
+        };
         plan.push(PlanStep {
             entities,
             constraints: construction.core.clone(),
             method: Method::Newton,
             candidates: 1,
             chosen: Some(0),
+            complete,
+            fixed: false,
         });
+    }
+    // The fixed choices, by closed-form step.
+    let offset = plan.len();
+    let mut forced: Vec<Option<usize>> = vec![None; construction.steps.len()];
+    for &(step, candidate) in &options.choose {
+        let why = if step < offset || step >= offset + construction.steps.len() {
+            Some(format!(
+                "the plan has {} step{}, of which {} in closed form (steps {}–{})",
+                offset + construction.steps.len(),
+                if offset + construction.steps.len() == 1 { "" } else { "s" },
+                construction.steps.len(),
+                offset,
+                (offset + construction.steps.len()).saturating_sub(1),
+            ))
+        } else if candidate > 1 {
+            Some("a closed-form step has candidates 0 and 1".to_owned())
+        } else {
+            None
+        };
+        if let Some(why) = why {
+            return Err(SolveError::Choice { step, candidate, why });
+        }
+        forced[step - offset] = Some(candidate);
     }
 
     // The points given by two distances, in closed form, each on the drawing's side. When a
@@ -661,10 +734,10 @@ pub fn solve(
         let mut first_failure = None;
         let mut confidence = vec![f64::INFINITY; construction.steps.len()];
         for (k, step) in construction.steps.iter().enumerate() {
-            let placed = place(step, &layout, system, &x0, &x, flips[k]);
+            let placed = place(step, &layout, system, &x0, &x, flips[k], forced[k]);
             let col = layout.columns(step.point).start;
             (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
-            if placed.candidates == 2 {
+            if placed.candidates == 2 && forced[k].is_none() {
                 confidence[k] = placed.confidence;
             }
             if placed.chosen.is_none() && first_failure.is_none() {
@@ -704,7 +777,7 @@ pub fn solve(
     // turn, they join its part.
     let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
     for (k, step) in construction.steps.iter().enumerate() {
-        let placed = place(step, &layout, system, &x0, &x, flips[k]);
+        let placed = place(step, &layout, system, &x0, &x, flips[k], forced[k]);
         let col = layout.columns(step.point).start;
         (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
         if placed.chosen.is_none() {
@@ -746,6 +819,8 @@ pub fn solve(
             method: Method::ClosedForm,
             candidates: placed.candidates,
             chosen: placed.chosen,
+            complete: true,
+            fixed: forced[k].is_some(),
         });
     }
 
@@ -797,6 +872,23 @@ pub fn solve(
     } else {
         Status::Solved
     };
+    let (solutions, truncated) = match options.all {
+        Some(limit) => {
+            let consistent: Vec<&Checked> = redundant.iter().filter(|r| !r.conflicting).collect();
+            let mut found = Realizations { limit, solutions: Vec::new(), truncated: false };
+            let holds = |y: &[f64]| {
+                consistent.iter().all(|r| {
+                    equations.residual(r.constraint, y).is_some_and(|res| {
+                        res.values.iter().all(|v| v.abs() <= r.allowance.max(r.residual.abs()))
+                    })
+                })
+            };
+            let mut y = core_x.clone();
+            found.search(&construction.steps, 0, &mut y, &layout, system, &forced, &holds);
+            (Some(found.solutions), found.truncated)
+        }
+        None => (None, false),
+    };
     let mut moved = 0.0f64;
     for e in system.entity_indices() {
         let Some(repr) = layout.repr(e) else { continue };
@@ -820,7 +912,57 @@ pub fn solve(
         plan,
         backtracked,
         bound_hit,
+        solutions,
+        truncated,
     })
+}
+
+/// The enumeration of [`SolveOptions::all`]: the realizations found so far and the limit.
+struct Realizations {
+    limit: usize,
+    solutions: Vec<Vec<f64>>,
+    truncated: bool,
+}
+
+impl Realizations {
+    /// Places steps `k..` in every way their real candidates allow (a fixed choice only its
+    /// own), depth first, keeping each complete placement under which `holds`.
+    #[allow(clippy::too_many_arguments)]
+    fn search(
+        &mut self,
+        steps: &[plan::Step],
+        k: usize,
+        y: &mut Vec<f64>,
+        layout: &Layout,
+        system: &System,
+        forced: &[Option<usize>],
+        holds: &dyn Fn(&[f64]) -> bool,
+    ) {
+        if self.truncated {
+            return;
+        }
+        let Some(step) = steps.get(k) else {
+            if holds(y) {
+                if self.solutions.len() == self.limit {
+                    self.truncated = true;
+                } else {
+                    self.solutions.push(y.clone());
+                }
+            }
+            return;
+        };
+        let [a, b] = step.anchors.map(|e| at(layout, y, e));
+        let [ra, rb] = step.constraints.map(|c| value(system, c));
+        let candidates = closed::circle_circle(a, ra, b, rb, 1e-12).candidates();
+        let col = layout.columns(step.point).start;
+        for (c, p) in candidates.into_iter().enumerate() {
+            if forced[k].is_some_and(|f| f != c) {
+                continue;
+            }
+            (y[col], y[col + 1]) = (p[0], p[1]);
+            self.search(steps, k + 1, y, layout, system, forced, holds);
+        }
+    }
 }
 
 /// A solved coordinate as a decimal on the grid of 10^-9 (the lowering's snapping of CAD

@@ -235,3 +235,104 @@ fn a_redundant_distance_off_by_ten_percent_conflicts_with_its_circuit() {
         assert_eq!(r.spanning_group.len() + 1, 2 * points.len() - 2, "a circuit");
     }
 }
+
+/// A triangle `abc` on its base `ab`, and `d` hung on `b` and `c`: two closed-form steps.
+fn hung_triangle() -> System {
+    model(
+        r#"System(dim: 2,
+  entities: [Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]), Point(id: "c", at: [2, 3]),
+             Point(id: "d", at: [5, 3])],
+  constraints: [Distance(id: "ab", a: "a", b: "b", value: 4), Distance(id: "ac", a: "a", b: "c", value: 3.5),
+                Distance(id: "bc", a: "b", b: "c", value: 3.5), Distance(id: "bd", a: "b", b: "d", value: 3),
+                Distance(id: "cd", a: "c", b: "d", value: 3)])"#,
+    )
+}
+
+fn solve_with(system: &System, options: &SolveOptions) -> gcs_solve::Solution {
+    let analysis = analyze(system, &AnalysisOptions::default()).unwrap();
+    solve(system, &analysis, options).unwrap()
+}
+
+/// Every distance of `system` holds at `x` to 1e-9.
+fn distances_hold(system: &System, x: &[f64]) -> bool {
+    system.constraint_indices().all(|c| {
+        let k = system.constraint(c);
+        let ends = system.constraint_base_entities(c);
+        let value = num_traits::ToPrimitive::to_f64(k.value.as_ref().unwrap()).unwrap();
+        let (p, q) = (
+            point(system, x, &system.entity(ends[0]).id),
+            point(system, x, &system.entity(ends[1]).id),
+        );
+        ((p.0 - q.0).hypot(p.1 - q.1) - value).abs() < 1e-9
+    })
+}
+
+/// `--all`: two closed-form steps give four realizations with the base as solved, each
+/// satisfying every constraint, all different, the drawn one among them; a limit truncates.
+#[test]
+fn every_realization_of_the_closed_form_steps_is_listed() {
+    let s = hung_triangle();
+    let sol = solve_with(&s, &SolveOptions { all: Some(64), ..SolveOptions::default() });
+    assert_eq!(sol.status, Status::Solved);
+    let all = sol.solutions.as_ref().unwrap();
+    assert_eq!(all.len(), 4, "{all:?}");
+    assert!(!sol.truncated);
+    for (i, x) in all.iter().enumerate() {
+        assert!(distances_hold(&s, x), "realization {i}: {x:?}");
+        for y in &all[..i] {
+            assert!(x.iter().zip(y).any(|(u, v)| (u - v).abs() > 1e-6), "two alike: {x:?}");
+        }
+    }
+    assert!(all.contains(&sol.x), "the realization the drawing shows is one of them");
+    // Closed-form steps are complete; the core of one distance too.
+    assert!(sol.plan.iter().all(|p| p.complete), "{:?}", sol.plan);
+    let few = solve_with(&s, &SolveOptions { all: Some(3), ..SolveOptions::default() });
+    assert_eq!((few.solutions.unwrap().len(), few.truncated), (3, true));
+    // Without --all: none listed.
+    assert!(run(&s).solutions.is_none());
+}
+
+/// The kite of the witness paper: its redundant sixth distance prunes the realizations whose
+/// two triangles are folded against each other; two remain (one the mirror of the other).
+#[test]
+fn a_consistent_redundant_constraint_prunes_the_realizations() {
+    let s = gcs_suite::load("data/paper/kite.ron");
+    let sol = solve_with(&s, &SolveOptions { all: Some(64), ..SolveOptions::default() });
+    let closed = sol.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).count();
+    assert_eq!(closed, 2, "{:?}", sol.plan);
+    let all = sol.solutions.unwrap();
+    assert_eq!(all.len(), 2, "{all:?}");
+    let [r] = sol.redundant.as_slice() else { panic!() };
+    let c6 = s.constraint(r.constraint);
+    let ends = s.constraint_base_entities(r.constraint);
+    let value = num_traits::ToPrimitive::to_f64(c6.value.as_ref().unwrap()).unwrap();
+    for x in &all {
+        let (p, q) = (point(&s, x, &s.entity(ends[0]).id), point(&s, x, &s.entity(ends[1]).id));
+        assert!(((p.0 - q.0).hypot(p.1 - q.1) - value).abs() <= r.allowance, "{x:?}");
+    }
+}
+
+/// `--choose STEP=K` fixes a closed-form step's side against the drawing: the solution and
+/// every listed realization have it; a step that is not in closed form is refused.
+#[test]
+fn a_fixed_choice_overrides_the_drawing() {
+    let s = hung_triangle();
+    let drawn = run(&s);
+    assert!(point(&s, &drawn.x, "c").1 > 0.0, "c is drawn above ab");
+    // Step 1 of the plan places c (step 0 is the core, ab); candidate 1 is to the right of a→b.
+    assert_eq!(drawn.plan[1].entities, vec![s.entity_by_id("c").unwrap()]);
+    let options = SolveOptions { choose: vec![(1, 1)], all: Some(64), ..SolveOptions::default() };
+    let sol = solve_with(&s, &options);
+    assert_eq!(sol.status, Status::Solved);
+    assert!(point(&s, &sol.x, "c").1 < 0.0);
+    assert!(sol.plan[1].fixed && !sol.plan[2].fixed);
+    let all = sol.solutions.unwrap();
+    assert_eq!(all.len(), 2);
+    assert!(all.iter().all(|x| point(&s, x, "c").1 < 0.0 && distances_hold(&s, x)));
+    let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
+    for bad in [(0, 1), (3, 0), (1, 2)] {
+        let options = SolveOptions { choose: vec![bad], ..SolveOptions::default() };
+        let err = solve(&s, &analysis, &options).unwrap_err();
+        assert!(matches!(err, gcs_solve::SolveError::Choice { .. }), "{bad:?}: {err}");
+    }
+}
