@@ -153,9 +153,11 @@ pub struct Solution {
     /// mirror images distinct), then every combination of the closed-form steps' real
     /// candidates (the fixed choices kept) under which every consistent redundant constraint
     /// still holds within its allowance; in the order of the candidates, the first step
-    /// outermost. `None` without it.
+    /// outermost. `None` without it. The search visits at most 2^20 partial placements
+    /// (`truncated` then).
     pub solutions: Option<Vec<Vec<f64>>>,
-    /// Whether the enumeration stopped at [`SolveOptions::all`]'s limit.
+    /// Whether the enumeration stopped at [`SolveOptions::all`]'s limit (or at its budget of
+    /// partial placements).
     pub truncated: bool,
 }
 
@@ -874,17 +876,31 @@ pub fn solve(
     };
     let (solutions, truncated) = match options.all {
         Some(limit) => {
-            let consistent: Vec<&Checked> = redundant.iter().filter(|r| !r.conflicting).collect();
-            let mut found = Realizations { limit, solutions: Vec::new(), truncated: false };
-            let holds = |y: &[f64]| {
-                consistent.iter().all(|r| {
+            // Each consistent redundant constraint is checked as soon as its entities are
+            // placed: after the last step that places one of them (before any: depth 0).
+            let depth_of: std::collections::HashMap<EntityIdx, usize> =
+                construction.steps.iter().enumerate().map(|(k, s)| (s.point, k + 1)).collect();
+            let mut checks: Vec<Vec<&Checked>> = vec![Vec::new(); construction.steps.len() + 1];
+            for r in redundant.iter().filter(|r| !r.conflicting) {
+                let base = system.constraint_base_entities(r.constraint);
+                let depth = base.iter().filter_map(|e| depth_of.get(e)).max().copied().unwrap_or(0);
+                checks[depth].push(r);
+            }
+            let holds = |depth: usize, y: &[f64]| {
+                checks[depth].iter().all(|r| {
                     equations.residual(r.constraint, y).is_some_and(|res| {
                         res.values.iter().all(|v| v.abs() <= r.allowance.max(r.residual.abs()))
                     })
                 })
             };
+            let mut found = Realizations {
+                limit,
+                solutions: Vec::new(),
+                truncated: false,
+                budget: ENUMERATION_BUDGET,
+            };
             let mut y = core_x.clone();
-            found.search(&construction.steps, 0, &mut y, &layout, system, &forced, &holds);
+            found.search(&construction.steps, &mut y, &layout, system, &forced, &holds);
             (Some(found.solutions), found.truncated)
         }
         None => (None, false),
@@ -917,50 +933,82 @@ pub fn solve(
     })
 }
 
-/// The enumeration of [`SolveOptions::all`]: the realizations found so far and the limit.
+/// The most partial placements the enumeration of [`SolveOptions::all`] visits before it
+/// stops (`truncated`): pruning by the redundant constraints can leave few realizations among
+/// exponentially many combinations.
+const ENUMERATION_BUDGET: usize = 1 << 20;
+
+/// The enumeration of [`SolveOptions::all`]: the realizations found so far, the limit, and the
+/// partial placements it may still visit.
 struct Realizations {
     limit: usize,
     solutions: Vec<Vec<f64>>,
     truncated: bool,
+    budget: usize,
 }
 
 impl Realizations {
-    /// Places steps `k..` in every way their real candidates allow (a fixed choice only its
-    /// own), depth first, keeping each complete placement under which `holds`.
-    #[allow(clippy::too_many_arguments)]
+    /// Places the steps in every way their real candidates allow (a fixed choice only its
+    /// own), depth first, abandoning a placement as soon as `holds(depth, y)` fails — the
+    /// redundant constraints completed by the steps before `depth` — and keeping each complete
+    /// one. Iterative (a sketch may have thousands of steps).
     fn search(
         &mut self,
         steps: &[plan::Step],
-        k: usize,
-        y: &mut Vec<f64>,
+        y: &mut [f64],
         layout: &Layout,
         system: &System,
         forced: &[Option<usize>],
-        holds: &dyn Fn(&[f64]) -> bool,
+        holds: &dyn Fn(usize, &[f64]) -> bool,
     ) {
-        if self.truncated {
-            return;
-        }
-        let Some(step) = steps.get(k) else {
-            if holds(y) {
-                if self.solutions.len() == self.limit {
+        // Per depth: the candidates of its step at the placement above it, and the next to try.
+        let mut stack: Vec<(Vec<[f64; 2]>, usize)> = Vec::new();
+        let mut entering = true;
+        loop {
+            let k = stack.len();
+            if entering {
+                if self.budget == 0 {
                     self.truncated = true;
+                    return;
+                }
+                self.budget -= 1;
+                let candidates = if !holds(k, y) {
+                    Vec::new()
+                } else if let Some(step) = steps.get(k) {
+                    let [a, b] = step.anchors.map(|e| at(layout, y, e));
+                    let [ra, rb] = step.constraints.map(|c| value(system, c));
+                    closed::circle_circle(a, ra, b, rb, 1e-12).candidates()
                 } else {
-                    self.solutions.push(y.clone());
+                    if self.solutions.len() == self.limit {
+                        self.truncated = true;
+                        return;
+                    }
+                    self.solutions.push(y.to_vec());
+                    Vec::new()
+                };
+                stack.push((candidates, 0));
+            }
+            // The next candidate at the deepest level, or back up.
+            let depth = stack.len().saturating_sub(1);
+            let Some((candidates, next)) = stack.last_mut() else { return };
+            let fixed = forced.get(depth).copied().flatten();
+            let chosen = (*next..candidates.len()).find(|c| fixed.is_none_or(|f| f == *c));
+            match chosen {
+                Some(c) => {
+                    *next = c + 1;
+                    let p = candidates[c];
+                    let col = layout.columns(steps[depth].point).start;
+                    (y[col], y[col + 1]) = (p[0], p[1]);
+                    entering = true;
+                }
+                None => {
+                    stack.pop();
+                    if stack.is_empty() {
+                        return;
+                    }
+                    entering = false;
                 }
             }
-            return;
-        };
-        let [a, b] = step.anchors.map(|e| at(layout, y, e));
-        let [ra, rb] = step.constraints.map(|c| value(system, c));
-        let candidates = closed::circle_circle(a, ra, b, rb, 1e-12).candidates();
-        let col = layout.columns(step.point).start;
-        for (c, p) in candidates.into_iter().enumerate() {
-            if forced[k].is_some_and(|f| f != c) {
-                continue;
-            }
-            (y[col], y[col + 1]) = (p[0], p[1]);
-            self.search(steps, k + 1, y, layout, system, forced, holds);
         }
     }
 }

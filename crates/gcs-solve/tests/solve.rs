@@ -336,3 +336,47 @@ fn a_fixed_choice_overrides_the_drawing() {
         assert!(matches!(err, gcs_solve::SolveError::Choice { .. }), "{bad:?}: {err}");
     }
 }
+
+/// A strip of 23 points (21 closed-form steps: 2^21 combinations) with a redundant distance
+/// from its first point to its last, checked only once every step is placed: the enumeration
+/// stops at its budget of partial placements and says so, with only realizations where the
+/// redundant distance holds.
+#[test]
+fn the_enumeration_stops_at_its_budget() {
+    let n = 23;
+    let mut entities = Vec::new();
+    let mut constraints = Vec::new();
+    for k in 0..n {
+        entities.push(format!("Point(id: \"p{k}\", at: [{}, {}])", 3 * k, 4 * (k % 2)));
+        if k >= 1 {
+            constraints
+                .push(format!("Distance(id: \"a{k}\", a: \"p{}\", b: \"p{k}\", value: 5)", k - 1));
+        }
+        if k >= 2 {
+            constraints
+                .push(format!("Distance(id: \"b{k}\", a: \"p{}\", b: \"p{k}\", value: 6)", k - 2));
+        }
+    }
+    constraints.push(format!(
+        "Distance(id: \"extra\", a: \"p0\", b: \"p{}\", value: {})",
+        n - 1,
+        3 * (n - 1)
+    ));
+    let s = model(&format!(
+        "System(dim: 2, entities: [{}], constraints: [{}])",
+        entities.join(", "),
+        constraints.join(", ")
+    ));
+    let sol = solve_with(&s, &SolveOptions { all: Some(64), ..SolveOptions::default() });
+    assert_eq!(sol.status, Status::Solved, "{:?}", sol.redundant);
+    let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+    assert_eq!(s.constraint(r.constraint).id, "extra");
+    let closed = sol.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).count();
+    assert_eq!(closed, n - 2, "{:?}", sol.plan);
+    assert!(sol.truncated, "2^21 combinations exceed the budget");
+    let all = sol.solutions.unwrap();
+    assert!(all.len() <= 2, "{}", all.len());
+    for x in &all {
+        assert!(distances_hold(&s, x));
+    }
+}
