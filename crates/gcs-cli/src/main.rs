@@ -35,6 +35,11 @@ struct Cli {
     command: Command,
 }
 
+/// The default of `--jobs`: the cores of this machine.
+fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
+}
+
 /// `--choose STEP=K`: a plan step's index and a candidate.
 fn parse_choice(text: &str) -> Result<(usize, usize), String> {
     let parsed = text.split_once('=').and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)));
@@ -150,6 +155,10 @@ enum Command {
         /// second, 1: right). Repeatable; the other steps follow the drawing.
         #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
         choose: Vec<(usize, usize)>,
+        /// Files solved at once, on that many threads (default: the cores of this machine;
+        /// one with --out). The output is the same as one at a time, in the same order.
+        #[arg(long, short = 'j', value_name = "N")]
+        jobs: Option<usize>,
         /// Model files or directories.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
@@ -232,13 +241,13 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
         Command::Convert { input, output } => convert::run(&input, output.as_deref()),
-        Command::Solve { format, out, all, max_solutions, choose, paths } => {
+        Command::Solve { format, out, all, max_solutions, choose, jobs, paths } => {
             let options = gcs_solve::SolveOptions {
                 all: all.then_some(max_solutions),
                 choose,
                 ..gcs_solve::SolveOptions::default()
             };
-            solve::run(&paths, format, out.as_deref(), &options)
+            solve::run(&paths, format, out.as_deref(), &options, jobs.unwrap_or_else(cores))
         }
         Command::Analyze {
             backend,
@@ -307,9 +316,7 @@ fn main() -> ExitCode {
                     structural,
                     decompose,
                     dot,
-                    jobs: jobs.unwrap_or_else(|| {
-                        std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
-                    }),
+                    jobs: jobs.unwrap_or_else(cores),
                     shard,
                     timeout: timeout.map(|limit| analyze::Timeout { limit, child_args }),
                     only_model,

@@ -14,38 +14,62 @@ pub(crate) fn run(
     format: Format,
     out_dir: Option<&Path>,
     options: &SolveOptions,
+    jobs: usize,
 ) -> ExitCode {
     let mut out = Out::new();
     let mut failed = 0;
-    for (file, model) in batch::models(paths) {
-        let result = model.and_then(|model| {
-            let at = model.at(&file);
-            let batch::Model { system, import } = model;
-            let (report, solution) = gcs_report::run::solve(&system, &file, import, options)
-                .map_err(|e| format!("{at}: {e}"))?;
-            if let Some(dir) = out_dir {
-                let path = dir.join(format!("{}.ron", system.name()));
-                let solved = solved_system(&system, &solution);
-                if let Some(parent) = path.parent() {
-                    std::fs::create_dir_all(parent)
-                        .map_err(|e| format!("cannot create {}: {e}", batch::display(parent)))?;
-                }
-                std::fs::write(&path, solved.to_ron())
-                    .map_err(|e| format!("cannot write {}: {e}", batch::display(&path)))?;
+    let inputs = batch::expand(paths);
+    let one = |file: &str, model: Result<batch::Model, String>| -> Result<String, String> {
+        let model = model?;
+        let at = model.at(file);
+        let batch::Model { system, import } = model;
+        let (report, solution) = gcs_report::run::solve(&system, file, import, options)
+            .map_err(|e| format!("{at}: {e}"))?;
+        if let Some(dir) = out_dir {
+            let path = dir.join(format!("{}.ron", system.name()));
+            let solved = solved_system(&system, &solution);
+            if let Some(parent) = path.parent() {
+                std::fs::create_dir_all(parent)
+                    .map_err(|e| format!("cannot create {}: {e}", batch::display(parent)))?;
             }
-            Ok(report)
-        });
-        match result {
-            Ok(report) => match format {
-                Format::Json => out.line(&report.to_json()),
-                Format::Text => out.line(&report.text()),
-            },
-            Err(message) => {
-                failed += 1;
-                out.failure(format, &file, &message);
+            std::fs::write(&path, solved.to_ron())
+                .map_err(|e| format!("cannot write {}: {e}", batch::display(&path)))?;
+        }
+        Ok(match format {
+            Format::Json => report.to_json(),
+            Format::Text => report.text(),
+        })
+    };
+    let work = |input: &batch::Input| -> Vec<(String, Result<String, String>)> {
+        batch::input_models(input)
+            .into_iter()
+            .map(|(file, model)| {
+                let result = one(&file, model);
+                (file, result)
+            })
+            .collect()
+    };
+    let panicked = |input: &batch::Input, why: String| {
+        let (batch::Input::File(p) | batch::Input::Missing(p, _)) = input;
+        let file = batch::display(p);
+        let message = format!("{file}: internal error (a bug of gcs, please report it): {why}");
+        vec![(file, Err(message))]
+    };
+    // Written models are named by model: one at a time, so that a name two files share ends
+    // as the later file's, as without --jobs.
+    let jobs = if out_dir.is_some() { 1 } else { jobs };
+    batch::ordered(&inputs, jobs, work, panicked, |results| {
+        for (file, result) in results {
+            match result {
+                Ok(report) => out.line(&report),
+                Err(message) => {
+                    failed += 1;
+                    out.failure(format, &file, &message);
+                }
             }
         }
-    }
+        out.flush();
+    });
     out.flush();
     batch::status(failed)
 }

@@ -137,3 +137,14 @@ fn all_realizations_and_fixed_choices() {
     let (code, _, _) = gcs(&["solve", "--choose", "one=0", "data/paper/kite.ron"]);
     assert_eq!(code, 2);
 }
+
+/// `gcs solve --jobs N`: byte for byte the one-at-a-time output, in the same order.
+#[test]
+fn parallel_solves_are_the_sequential_run() {
+    let (code, one, err) = gcs(&["solve", "--format", "json", "--jobs", "1", "data/"]);
+    assert_eq!(code, 0, "{err}");
+    let (code, three, err) = gcs(&["solve", "--format", "json", "--jobs", "3", "data/"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(one.lines().count() > 20);
+    assert_eq!(three, one);
+}
