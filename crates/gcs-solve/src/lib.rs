@@ -149,8 +149,8 @@ pub struct Solution {
     /// Whether backtracking stopped at its bound with a step still without a candidate.
     pub bound_hit: bool,
     /// With [`SolveOptions::all`]: the realizations found, each over the layout's columns like
-    /// `x` — the core as solved (the reference: realizations are counted up to moving the whole,
-    /// mirror images distinct), then every combination of the closed-form steps' real
+    /// `x` — the core, and every entity no closed-form step places, as solved (the reference:
+    /// realizations are counted up to moving the whole, mirror images distinct), then every combination of the closed-form steps' real
     /// candidates (the fixed choices kept) under which every consistent redundant constraint
     /// still holds within its allowance; in the order of the candidates, the first step
     /// outermost. `None` without it. The search visits at most 2^20 partial placements

@@ -380,3 +380,30 @@ fn the_enumeration_stops_at_its_budget() {
         assert!(distances_hold(&s, x));
     }
 }
+
+/// An articulated chain of 8 triangles, flexible: the peeling places 12 points in closed form
+/// and leaves the others where the drawing has them (no core). Every listed realization
+/// satisfies every distance, they are distinct, the solve's own is among them; the apexes that
+/// no other step depends on double the count each, and combinations whose circles do not meet
+/// are no realization.
+#[test]
+fn a_flexible_chain_lists_its_realizations_given_its_free_points() {
+    let s = gcs_model::generate::triangle_chain(8, 3);
+    let sol = solve_with(&s, &SolveOptions { all: Some(5000), ..SolveOptions::default() });
+    assert_eq!(sol.status, Status::Solved);
+    let steps: Vec<_> =
+        sol.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).collect();
+    assert_eq!((steps.len(), sol.plan.len()), (12, 12));
+    assert!(steps.iter().all(|p| p.candidates == 2 && p.complete));
+    let all = sol.solutions.unwrap();
+    assert!(!sol.truncated);
+    assert!(all.len() >= 1 << 4 && all.len() <= 1 << 12, "{}", all.len());
+    assert!(all.len() % 16 == 0, "four leaf apexes double the count: {}", all.len());
+    assert!(all.contains(&sol.x));
+    for (i, x) in all.iter().enumerate() {
+        assert!(distances_hold(&s, x), "realization {i}");
+        assert!(all[..i].iter().all(|y| x.iter().zip(y).any(|(u, v)| (u - v).abs() > 1e-9)));
+    }
+    let few = solve_with(&s, &SolveOptions { all: Some(10), ..SolveOptions::default() });
+    assert_eq!((few.solutions.unwrap().len(), few.truncated), (10, true));
+}
