@@ -23,6 +23,8 @@ pub(crate) struct Settings {
     pub(crate) decompose: bool,
     /// Write the W-decompositions as Graphviz DOT to this file (`--dot`).
     pub(crate) dot: Option<PathBuf>,
+    /// Draw each model as SVG into this directory (`--svg`).
+    pub(crate) svg: Option<PathBuf>,
     /// Files analysed at once (`--jobs`).
     pub(crate) jobs: usize,
     /// Only this shard of the inputs (`--shard i/n`).
@@ -72,6 +74,14 @@ fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> 
         (Some(_), Some(trees)) => gcs_report::clusters::dot(&system, trees),
         _ => String::new(),
     };
+    if let Some(dir) = &settings.svg {
+        let report = analyzed.report(&system, file, import.clone());
+        let path = dir.join(format!("{}.svg", batch::file_name(system.name())));
+        let written = path.parent().map_or(Ok(()), std::fs::create_dir_all).and_then(|()| {
+            std::fs::write(&path, gcs_report::picture::analysis_svg(&system, &report))
+        });
+        written.map_err(|e| format!("{at}: cannot write {}: {e}", batch::display(&path)))?;
+    }
     let report = match settings.format {
         Format::Json => analyzed.report(&system, file, import).to_json(),
         Format::Text => analyzed.text(&system, file, import.as_ref()),

@@ -78,6 +78,24 @@ fn read_models(path: &Path, file: &str) -> Vec<Result<Model, String>> {
     }
 }
 
+/// A model's name as a relative file name: its `/`-separated parts (a CAD file's sketches are
+/// `file/sketch`) kept as directories, each part reduced to letters, digits, `.`, `-` and `_`
+/// (others become `_`), empty, `.` and `..` parts dropped — never a path outside the directory.
+pub(crate) fn file_name(name: &str) -> String {
+    let parts: Vec<String> = name
+        .split(['/', '\\'])
+        .filter(|p| !p.is_empty() && *p != "." && *p != "..")
+        .map(|p| {
+            p.chars()
+                .map(|c| {
+                    if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_') { c } else { '_' }
+                })
+                .collect()
+        })
+        .collect();
+    if parts.is_empty() { "model".to_owned() } else { parts.join("/") }
+}
+
 /// The display form of a path in reports: as given, with `/` separators.
 pub(crate) fn display(path: &Path) -> String {
     path.display().to_string().replace('\\', "/")

@@ -92,6 +92,11 @@ enum Command {
         /// subsystem it decomposes into. Render with `dot -Tsvg FILE`.
         #[arg(long, value_name = "FILE")]
         dot: Option<PathBuf>,
+        /// Draw each model as SVG to DIR/<model name>.svg: the sketch, each rigid cluster in its
+        /// own colour, redundant constraints in orange (red when conflicting) and constraints
+        /// dependent only at this drawing in magenta, with what they depend on as tooltips.
+        #[arg(long, value_name = "DIR")]
+        svg: Option<PathBuf>,
         /// Files analysed at once, on that many threads (default: the cores of this machine).
         /// The output is the same as one at a time, in the same order.
         #[arg(long, short = 'j', value_name = "N")]
@@ -257,6 +262,7 @@ fn main() -> ExitCode {
             structural,
             decompose,
             dot,
+            svg,
             jobs,
             shard,
             timeout,
@@ -307,6 +313,10 @@ fn main() -> ExitCode {
             if decompose {
                 child_args.push("--decompose".to_owned());
             }
+            if let Some(dir) = &svg {
+                child_args.push("--svg".to_owned());
+                child_args.push(dir.display().to_string());
+            }
             analyze::run(
                 &paths,
                 &analyze::Settings {
@@ -316,6 +326,7 @@ fn main() -> ExitCode {
                     structural,
                     decompose,
                     dot,
+                    svg,
                     jobs: jobs.unwrap_or_else(cores),
                     shard,
                     timeout: timeout.map(|limit| analyze::Timeout { limit, child_args }),

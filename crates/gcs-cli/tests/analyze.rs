@@ -526,3 +526,48 @@ fn a_model_over_the_timeout_gets_an_error_line_and_the_batch_goes_on() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--svg DIR`: one picture per model, named by the model (a CAD file's sketches in a directory
+/// of the file's name); the redundant constraint drawn with what it is redundant with as its
+/// tooltip, the singular drawing's dependent constraints and configuration named; a model name
+/// that climbs out of the directory stays inside it.
+#[test]
+fn pictures_of_the_analysis() {
+    let dir = std::env::temp_dir().join(format!("gcs-svg-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let evil = dir.join("evil.ron");
+    std::fs::create_dir_all(&dir).unwrap();
+    let kite = std::fs::read_to_string(root().join("data/paper/kite.ron")).unwrap();
+    std::fs::write(&evil, kite.replace("name: \"kite\"", "name: \"../../outside\"")).unwrap();
+    let out = dir.join("pictures");
+    let (code, _, err) = gcs(&[
+        "analyze",
+        "--svg",
+        out.to_str().unwrap(),
+        "data/paper/kite.ron",
+        "data/singular/collinear_inside_rigid.ron",
+        "data/cad/slot.slvs",
+        evil.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let read = |name: &str| {
+        std::fs::read_to_string(out.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+    };
+    let kite = read("kite.svg");
+    assert!(kite.starts_with("<svg") && kite.trim_end().ends_with("</svg>"), "{kite}");
+    assert!(
+        kite.contains("<title>c6 (Distance): redundant (consistent): remove it or one of c1, c2, c3, c4, c5</title>"),
+        "{kite}"
+    );
+    assert!(kite.contains("kite: over-constrained"), "{kite}");
+    let singular = read("collinear_inside_rigid.svg");
+    assert!(singular.contains("dependent at this drawing (singular) with d12, d23"), "{singular}");
+    assert!(singular.contains("collinear p1, p2, p3"), "{singular}");
+    assert!(read("slot/g2.svg").contains("<svg"));
+    // "../../outside" loses its climbing parts.
+    assert!(read("outside.svg").contains("<svg"));
+    assert!(
+        !dir.join("outside.svg").exists() && !dir.parent().unwrap().join("outside.svg").exists()
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

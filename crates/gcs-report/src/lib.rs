@@ -35,6 +35,7 @@ mod check;
 pub mod clusters;
 mod error;
 mod import;
+pub mod picture;
 mod report;
 pub mod run;
 mod solve;

@@ -1,0 +1,351 @@
+//! Pictures of an analysis (`gcs analyze --svg DIR`): the sketch drawn as SVG, each rigid
+//! cluster in its own colour, the redundant constraints in orange (consistent at the values, or
+//! not measured) or red (conflicting), the constraints dependent only at this drawing (a
+//! singular position) in magenta, each with what it depends on in its tooltip (`<title>`), and
+//! the verdict written above the drawing.
+//!
+//! Everything drawn comes from the model (the entities at their sketch positions) and from the
+//! [`Report`] (clusters, redundancy, the singular-configuration section): the picture says what
+//! the JSON report says. 3D models are drawn projected onto the xy plane, as the title says.
+
+use gcs_model::entity::Geometry;
+use gcs_model::{EntityIdx, System};
+use num_traits::ToPrimitive;
+use svg::Document;
+use svg::node::element::{Circle, Group, Line, Path, Text, Title};
+
+use crate::Report;
+
+/// The colours of the clusters, in order (then again).
+const PALETTE: [&str; 8] =
+    ["#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#bcbd22", "#e377c2", "#7f7f7f"];
+/// Entities in no cluster.
+const LOOSE: &str = "#555555";
+const REDUNDANT: &str = "#ff7f0e";
+const CONFLICTING: &str = "#d62728";
+const SINGULAR: &str = "#c800c8";
+
+/// A 2D position of the drawing (y up, as in the model).
+type P = [f64; 2];
+
+fn f(q: &gcs_model::BigRational) -> f64 {
+    q.to_f64().unwrap_or(f64::NAN)
+}
+
+fn xy(c: &[gcs_model::BigRational]) -> Option<P> {
+    Some([f(c.first()?), f(c.get(1)?)])
+}
+
+/// Where an entity is drawn: a point's position, a circle's or arc's centre, the middle of a
+/// segment or of a line's two sketch points.
+fn anchor(system: &System, e: EntityIdx) -> Option<P> {
+    match &system.entity(e).geometry {
+        Geometry::Point { at } => xy(at.as_ref()?),
+        Geometry::Circle { center, .. }
+        | Geometry::Sphere { center, .. }
+        | Geometry::Arc { center, .. } => xy(center.as_ref()?),
+        Geometry::Segment { from, to } => {
+            let (a, b) = (anchor(system, *from)?, anchor(system, *to)?);
+            Some([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0])
+        }
+        Geometry::Line { at } | Geometry::Plane { at } => {
+            let [p, _] = at.as_ref()?;
+            xy(p)
+        }
+    }
+}
+
+/// The drawing's extent: every anchor, and circles and arcs in full.
+fn bounds(system: &System) -> Option<(P, P)> {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    let mut add = |p: P, r: f64| {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k] - r);
+            hi[k] = hi[k].max(p[k] + r);
+        }
+    };
+    for e in system.entity_indices() {
+        let Some(p) = anchor(system, e) else { continue };
+        let r = match &system.entity(e).geometry {
+            Geometry::Circle { radius, .. }
+            | Geometry::Sphere { radius, .. }
+            | Geometry::Arc { radius, .. } => radius.as_ref().map_or(0.0, |r| f(r).abs()),
+            Geometry::Line { at: Some([_, q]) } => {
+                if let Some(q) = xy(q) {
+                    add(q, 0.0);
+                }
+                0.0
+            }
+            _ => 0.0,
+        };
+        if p[0].is_finite() && p[1].is_finite() && r.is_finite() {
+            add(p, r);
+        }
+    }
+    (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
+}
+
+/// The SVG of `report` (an analysis of `system`), as text.
+pub fn analysis_svg(system: &System, report: &Report) -> String {
+    let Some((lo, hi)) = bounds(system) else {
+        return Document::new().add(Text::new("nothing drawn: no sketch positions")).to_string();
+    };
+    let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
+    let margin = 0.08 * size;
+    // Model y goes up; SVG's down: y is negated.
+    let (x0, y0) = (lo[0] - margin, -hi[1] - margin);
+    let (w, h) = (hi[0] - lo[0] + 2.0 * margin, hi[1] - lo[1] + 2.0 * margin);
+    let head = 0.2 * w.max(h);
+    let dot = 0.009 * size;
+    let font = 0.024 * w.max(h);
+    let line_width = 0.004 * size;
+
+    let colour_of = |e: &str| -> &'static str {
+        report
+            .clusters
+            .iter()
+            .position(|c| c.entities.iter().any(|x| x == e))
+            .map_or(LOOSE, |k| PALETTE[k % PALETTE.len()])
+    };
+    let at = |p: P| (p[0], -p[1]);
+
+    let mut shapes = Group::new().set("fill", "none").set("stroke-linecap", "round");
+    for e in system.entity_indices() {
+        let entity = system.entity(e);
+        let colour = colour_of(&entity.id);
+        let title = Title::new(format!("{} ({})", entity.id, entity.kind().name()));
+        let shape: Option<svg::node::element::Element> = match &entity.geometry {
+            Geometry::Point { .. } => anchor(system, e).map(|p| {
+                let (cx, cy) = at(p);
+                Circle::new()
+                    .set("cx", cx)
+                    .set("cy", cy)
+                    .set("r", dot)
+                    .set("fill", colour)
+                    .set("stroke", "none")
+                    .add(title)
+                    .into()
+            }),
+            Geometry::Segment { from, to } => {
+                anchor(system, *from).zip(anchor(system, *to)).map(|(a, b)| {
+                    let ((x1, y1), (x2, y2)) = (at(a), at(b));
+                    segment(x1, y1, x2, y2, colour, line_width).add(title).into()
+                })
+            }
+            Geometry::Line { at: Some([p, q]) } | Geometry::Plane { at: Some([p, q]) }
+                if matches!(entity.geometry, Geometry::Line { .. }) =>
+            {
+                xy(p).zip(xy(q)).map(|(a, b)| {
+                    // Extended across the drawing.
+                    let d = [b[0] - a[0], b[1] - a[1]];
+                    let n = d[0].hypot(d[1]).max(1e-300);
+                    let t = 2.0 * size / n;
+                    let (x1, y1) = at([a[0] - t * d[0], a[1] - t * d[1]]);
+                    let (x2, y2) = at([a[0] + t * d[0], a[1] + t * d[1]]);
+                    segment(x1, y1, x2, y2, colour, line_width)
+                        .set(
+                            "stroke-dasharray",
+                            format!("{} {}", 4.0 * line_width, 2.0 * line_width),
+                        )
+                        .add(title)
+                        .into()
+                })
+            }
+            Geometry::Circle { center, radius } | Geometry::Sphere { center, radius } => {
+                center.as_ref().and_then(|c| xy(c)).zip(radius.as_ref().map(f)).map(|(c, r)| {
+                    let (cx, cy) = at(c);
+                    Circle::new()
+                        .set("cx", cx)
+                        .set("cy", cy)
+                        .set("r", r.abs())
+                        .set("stroke", colour)
+                        .set("stroke-width", line_width)
+                        .add(title)
+                        .into()
+                })
+            }
+            Geometry::Arc { center, radius, start, end } => {
+                let c = center.as_ref().and_then(|c| xy(c));
+                let r = radius.as_ref().map(f);
+                match (c, r, anchor(system, *start), anchor(system, *end)) {
+                    (Some(_), Some(r), Some(s), Some(t)) => {
+                        // Counter-clockwise from start to end in the model: clockwise once y is
+                        // negated (sweep flag 0), the large arc when the turn exceeds π.
+                        let c = c.unwrap_or_default();
+                        let angle = |p: P| (p[1] - c[1]).atan2(p[0] - c[0]);
+                        let turn = (angle(t) - angle(s)).rem_euclid(std::f64::consts::TAU);
+                        let large = u8::from(turn > std::f64::consts::PI);
+                        let ((sx, sy), (tx, ty)) = (at(s), at(t));
+                        let d = format!("M {sx} {sy} A {r} {r} 0 {large} 0 {tx} {ty}", r = r.abs());
+                        Some(
+                            Path::new()
+                                .set("d", d)
+                                .set("stroke", colour)
+                                .set("stroke-width", line_width)
+                                .add(title)
+                                .into(),
+                        )
+                    }
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        if let Some(shape) = shape {
+            shapes = shapes.add(shape);
+        }
+    }
+
+    // Distances between two points: thin lines in their cluster's colour.
+    let mut bars = Group::new().set("stroke-linecap", "round");
+    for c in system.constraint_indices() {
+        let constraint = system.constraint(c);
+        let points = constraint
+            .args
+            .iter()
+            .filter(|e| matches!(system.entity(**e).geometry, Geometry::Point { .. }))
+            .filter_map(|e| anchor(system, *e))
+            .collect::<Vec<P>>();
+        let [a, b] = points.as_slice() else { continue };
+        if constraint.kind != gcs_model::ConstraintKind::Distance || constraint.args.len() != 2 {
+            continue;
+        }
+        let colour = report
+            .clusters
+            .iter()
+            .position(|k| k.constraints.iter().any(|x| *x == constraint.id))
+            .map_or(LOOSE, |k| PALETTE[k % PALETTE.len()]);
+        let value = constraint.value.as_ref().map(f).unwrap_or(f64::NAN);
+        let ((x1, y1), (x2, y2)) = (at(*a), at(*b));
+        bars = bars.add(
+            segment(x1, y1, x2, y2, colour, 0.5 * line_width)
+                .add(Title::new(format!("{} (Distance {value})", constraint.id))),
+        );
+    }
+
+    // Redundant and singular constraints, over the shapes.
+    let mut marks = Group::new().set("stroke-linecap", "round");
+    let anchors_of = |c: gcs_model::ConstraintIdx| -> Vec<P> {
+        system.constraint(c).args.iter().filter_map(|e| anchor(system, *e)).collect()
+    };
+    let by_id = |id: &str| system.constraint_indices().find(|c| system.constraint(*c).id == id);
+    let mut marked = |id: &str, colour: &str, what: String, width: f64| {
+        let Some(c) = by_id(id) else { return };
+        let title = Title::new(format!("{id} ({}): {what}", system.constraint(c).kind.name()));
+        let points = anchors_of(c);
+        match points.as_slice() {
+            [a, b, ..] => {
+                let ((x1, y1), (x2, y2)) = (at(*a), at(*b));
+                marks = std::mem::take(&mut marks).add(
+                    segment(x1, y1, x2, y2, colour, width).set("stroke-opacity", 0.8).add(title),
+                );
+            }
+            [a] => {
+                let (cx, cy) = at(*a);
+                marks = std::mem::take(&mut marks).add(
+                    Circle::new()
+                        .set("cx", cx)
+                        .set("cy", cy)
+                        .set("r", 2.5 * dot)
+                        .set("fill", "none")
+                        .set("stroke", colour)
+                        .set("stroke-width", width)
+                        .add(title),
+                );
+            }
+            [] => {}
+        }
+    };
+    for r in &report.redundant {
+        let (colour, verdict) = match r.conflicting {
+            Some(true) => (CONFLICTING, "conflicting: change one value or delete one of"),
+            Some(false) => (REDUNDANT, "redundant (consistent): remove it or one of"),
+            None => (REDUNDANT, "redundant: remove it or one of"),
+        };
+        marked(
+            &r.constraint,
+            colour,
+            format!("{verdict} {}", r.spanning_group.join(", ")),
+            3.0 * line_width,
+        );
+    }
+    if let Some(sketch) = report.sketch.as_ref().filter(|s| s.singular) {
+        for d in &sketch.dependent {
+            let what = format!(
+                "dependent at this drawing (singular) with {}",
+                d.spanning_group.join(", ")
+            );
+            marked(&d.constraint, SINGULAR, what, 2.0 * line_width);
+        }
+    }
+
+    // The verdict, above the drawing.
+    let verdict = if report.rigid {
+        if report.redundant.is_empty() {
+            "well-constrained"
+        } else {
+            "over-constrained (rigid, redundant constraints)"
+        }
+    } else if report.redundant.is_empty() {
+        "under-constrained"
+    } else {
+        "under-constrained, with redundant constraints"
+    };
+    let mut lines = vec![
+        format!("{}: {verdict}", report.model),
+        format!(
+            "DOF {} · {} rigid cluster{} (a colour each) · {} redundant (orange; red: conflicting)",
+            report.dof,
+            report.clusters.len(),
+            if report.clusters.len() == 1 { "" } else { "s" },
+            report.redundant.len()
+        ),
+    ];
+    if let Some(sketch) = report.sketch.as_ref().filter(|s| s.singular) {
+        let kinds: Vec<String> = sketch
+            .configurations
+            .iter()
+            .map(|c| format!("{} {}", c.kind, c.entities.join(", ")))
+            .collect();
+        lines.push(format!(
+            "singular at this drawing (magenta): {} extra motion{}{}",
+            sketch.extra_motions,
+            if sketch.extra_motions == 1 { "" } else { "s" },
+            if kinds.is_empty() { String::new() } else { format!(" — {}", kinds.join("; ")) }
+        ));
+    }
+    if report.dim == 3 {
+        lines.push("3D model: projected onto the xy plane".to_owned());
+    }
+    let mut text =
+        Group::new().set("font-family", "sans-serif").set("font-size", font).set("fill", "#222");
+    for (k, l) in lines.iter().enumerate() {
+        text = text.add(
+            Text::new(l.as_str())
+                .set("x", x0 + 0.5 * font)
+                .set("y", y0 - head + (k as f64 + 1.3) * 1.3 * font),
+        );
+    }
+
+    Document::new()
+        .set("viewBox", (x0, y0 - head, w, h + head))
+        .set("width", 800)
+        .set("height", (800.0 * (h + head) / w).round())
+        .add(Title::new(format!("{} — {}", report.file, report.model)))
+        .add(text)
+        .add(bars)
+        .add(shapes)
+        .add(marks)
+        .to_string()
+}
+
+fn segment(x1: f64, y1: f64, x2: f64, y2: f64, colour: &str, width: f64) -> Line {
+    Line::new()
+        .set("x1", x1)
+        .set("y1", y1)
+        .set("x2", x2)
+        .set("y2", y2)
+        .set("stroke", colour)
+        .set("stroke-width", width)
+}
