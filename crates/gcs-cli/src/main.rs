@@ -152,9 +152,11 @@ enum Command {
         /// which the consistent redundant constraints still hold (mirror images distinct).
         #[arg(long)]
         all: bool,
-        /// With --all: list at most N realizations (`truncated` says when there were more).
-        #[arg(long, value_name = "N", default_value_t = 64)]
-        max_solutions: usize,
+        /// With --all: list at most N realizations (`truncated` says when there were more; at
+        /// most 10000, each realization being a copy of the model in the report).
+        #[arg(long, value_name = "N", default_value_t = 64,
+              value_parser = clap::value_parser!(u32).range(1..=10_000))]
+        max_solutions: u32,
         /// Fix the choice of a closed-form step: STEP=K places step STEP of the `plan` list (its
         /// index, from 0) at its candidate K (0: left of the line from its first anchor to its
         /// second, 1: right). Repeatable; the other steps follow the drawing.
@@ -248,7 +250,7 @@ fn main() -> ExitCode {
         Command::Convert { input, output } => convert::run(&input, output.as_deref()),
         Command::Solve { format, out, all, max_solutions, choose, jobs, paths } => {
             let options = gcs_solve::SolveOptions {
-                all: all.then_some(max_solutions),
+                all: all.then_some(max_solutions as usize),
                 choose,
                 ..gcs_solve::SolveOptions::default()
             };
