@@ -76,7 +76,18 @@ fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> 
     };
     if let Some(dir) = &settings.svg {
         let report = analyzed.report(&system, file, import.clone());
-        let path = dir.join(format!("{}.svg", batch::file_name(system.name())));
+        // Named by the file (its path as given, without the extension), and for a CAD file's
+        // sketch by the sketch within it: unique in a batch, whatever the models are called.
+        let stem =
+            file.rsplit_once('.').filter(|(_, ext)| !ext.contains('/')).map_or(file, |s| s.0);
+        let name = match &import {
+            Some(_) => {
+                let sketch = system.name().rsplit_once('/').map_or(system.name(), |s| s.1);
+                format!("{stem}/{sketch}")
+            }
+            None => stem.to_owned(),
+        };
+        let path = dir.join(format!("{}.svg", batch::file_name(&name)));
         let written = path.parent().map_or(Ok(()), std::fs::create_dir_all).and_then(|()| {
             std::fs::write(&path, gcs_report::picture::analysis_svg(&system, &report))
         });

@@ -78,9 +78,9 @@ fn read_models(path: &Path, file: &str) -> Vec<Result<Model, String>> {
     }
 }
 
-/// A model's name as a relative file name: its `/`-separated parts (a CAD file's sketches are
-/// `file/sketch`) kept as directories, each part reduced to letters, digits, `.`, `-` and `_`
-/// (others become `_`), empty, `.` and `..` parts dropped — never a path outside the directory.
+/// A path or name as a relative file name: its `/`-separated parts kept as directories, each
+/// reduced to letters, digits, `.`, `-` and `_` (others become `_`), empty, `.` and `..` parts
+/// dropped — never a path outside the directory it is joined to.
 pub(crate) fn file_name(name: &str) -> String {
     let parts: Vec<String> = name
         .split(['/', '\\'])

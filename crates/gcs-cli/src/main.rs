@@ -92,7 +92,8 @@ enum Command {
         /// subsystem it decomposes into. Render with `dot -Tsvg FILE`.
         #[arg(long, value_name = "FILE")]
         dot: Option<PathBuf>,
-        /// Draw each model as SVG to DIR/<model name>.svg: the sketch, each rigid cluster in its
+        /// Draw each model as SVG to DIR/<file path without extension>.svg (a CAD file's
+        /// sketches to DIR/<file path without extension>/<sketch>.svg): the sketch, each rigid cluster in its
         /// own colour, redundant constraints in orange (red when conflicting) and constraints
         /// dependent only at this drawing in magenta, with what they depend on as tooltips.
         #[arg(long, value_name = "DIR")]

@@ -527,18 +527,17 @@ fn a_model_over_the_timeout_gets_an_error_line_and_the_batch_goes_on() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// `--svg DIR`: one picture per model, named by the model (a CAD file's sketches in a directory
+/// `--svg DIR`: one picture per model, named by its file (a CAD file's sketches in a directory
 /// of the file's name); the redundant constraint drawn with what it is redundant with as its
-/// tooltip, the singular drawing's dependent constraints and configuration named; a model name
-/// that climbs out of the directory stays inside it.
+/// tooltip, the singular drawing's dependent constraints and configuration named; an absolute
+/// path lands inside the directory.
 #[test]
 fn pictures_of_the_analysis() {
     let dir = std::env::temp_dir().join(format!("gcs-svg-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let evil = dir.join("evil.ron");
     std::fs::create_dir_all(&dir).unwrap();
-    let kite = std::fs::read_to_string(root().join("data/paper/kite.ron")).unwrap();
-    std::fs::write(&evil, kite.replace("name: \"kite\"", "name: \"../../outside\"")).unwrap();
+    let copy = dir.join("copy.ron");
+    std::fs::copy(root().join("data/paper/kite.ron"), &copy).unwrap();
     let out = dir.join("pictures");
     let (code, _, err) = gcs(&[
         "analyze",
@@ -547,27 +546,26 @@ fn pictures_of_the_analysis() {
         "data/paper/kite.ron",
         "data/singular/collinear_inside_rigid.ron",
         "data/cad/slot.slvs",
-        evil.to_str().unwrap(),
+        copy.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
     let read = |name: &str| {
         std::fs::read_to_string(out.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
     };
-    let kite = read("kite.svg");
+    let kite = read("data/paper/kite.svg");
     assert!(kite.starts_with("<svg") && kite.trim_end().ends_with("</svg>"), "{kite}");
     assert!(
         kite.contains("<title>c6 (Distance): redundant (consistent): remove it or one of c1, c2, c3, c4, c5</title>"),
         "{kite}"
     );
     assert!(kite.contains("kite: over-constrained"), "{kite}");
-    let singular = read("collinear_inside_rigid.svg");
+    let singular = read("data/singular/collinear_inside_rigid.svg");
     assert!(singular.contains("dependent at this drawing (singular) with d12, d23"), "{singular}");
     assert!(singular.contains("collinear p1, p2, p3"), "{singular}");
-    assert!(read("slot/g2.svg").contains("<svg"));
-    // "../../outside" loses its climbing parts.
-    assert!(read("outside.svg").contains("<svg"));
-    assert!(
-        !dir.join("outside.svg").exists() && !dir.parent().unwrap().join("outside.svg").exists()
-    );
+    assert!(read("data/cad/slot/g2.svg").contains("<svg"));
+    // The copy of the kite, given by its absolute path: inside the directory, beside the other.
+    let inside = copy.with_extension("svg");
+    let relative = inside.to_str().unwrap().trim_start_matches('/');
+    assert!(read(relative).contains("kite: over-constrained"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
