@@ -13,6 +13,9 @@
 //! a redundant distance that contradicts the others; with `minimal`, it is left out (the
 //! sketch is then minimally rigid: no redundant constraint).
 
+// A command-line tool: it prints by design.
+#![allow(clippy::print_stdout, clippy::print_stderr)]
+
 use std::collections::HashMap;
 
 use gcs_model::ConstraintKind;

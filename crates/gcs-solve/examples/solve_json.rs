@@ -4,6 +4,9 @@
 //! `cargo run --release -p gcs-solve --example solve_json -- FILE`. The side of gcs in
 //! `benches/compare_solvers.sh`.
 
+// A command-line tool: it prints by design.
+#![allow(clippy::print_stdout, clippy::print_stderr)]
+
 use std::time::Instant;
 
 use gcs_analysis::{AnalysisOptions, analyze};
@@ -91,12 +94,12 @@ fn main() {
             analysis.redundant.len()
         );
         for r in &solution.redundant {
+            let group: Vec<String> = r.spanning_group.iter().map(|&c| id(c)).collect();
             eprintln!(
-                "  redundant {} residual {:.3e} {} spanning group of {}",
+                "  redundant {} residual {:.3e} {} spanning group {group:?}",
                 id(r.constraint),
                 r.residual,
                 if r.conflicting { "CONFLICTING" } else { "consistent" },
-                r.spanning_group.len()
             );
         }
         for part in &solution.no_solution {
