@@ -160,12 +160,7 @@ pub(crate) fn run(paths: &[PathBuf], settings: &Settings) -> ExitCode {
             })
             .collect()
     };
-    let panicked = |input: &batch::Input, why: String| {
-        let (batch::Input::File(p) | batch::Input::Missing(p, _)) = input;
-        let file = batch::display(p);
-        let message = format!("{file}: internal error (a bug of gcs, please report it): {why}");
-        vec![(file, Err(message))]
-    };
+    let panicked = |input: &batch::Input, why: String| vec![batch::internal_error(input, &why)];
     // A progress bar on a terminal only (indicatif draws nothing when standard error is not
     // one: pipes, files, CI).
     let progress = indicatif::ProgressBar::new(inputs.len() as u64);

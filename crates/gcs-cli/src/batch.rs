@@ -183,6 +183,14 @@ pub(crate) fn input_models(input: &Input) -> Vec<(String, Result<Model, String>)
     }
 }
 
+/// The error line of an input whose processing panicked (a bug): its file and the message.
+pub(crate) fn internal_error<T>(input: &Input, why: &str) -> (String, Result<T, String>) {
+    let (Input::File(p) | Input::Missing(p, _)) = input;
+    let file = display(p);
+    let message = format!("{file}: internal error (a bug of gcs, please report it): {why}");
+    (file, Err(message))
+}
+
 /// Runs `exe args path` with its output captured, and stops it when `limit` is up: `None` then,
 /// otherwise its exit status, standard output and standard error.
 ///

@@ -49,12 +49,7 @@ pub(crate) fn run(
             })
             .collect()
     };
-    let panicked = |input: &batch::Input, why: String| {
-        let (batch::Input::File(p) | batch::Input::Missing(p, _)) = input;
-        let file = batch::display(p);
-        let message = format!("{file}: internal error (a bug of gcs, please report it): {why}");
-        vec![(file, Err(message))]
-    };
+    let panicked = |input: &batch::Input, why: String| vec![batch::internal_error(input, &why)];
     // Written models are named by model: one at a time, so that a name two files share ends
     // as the later file's, as without --jobs.
     let jobs = if out_dir.is_some() { 1 } else { jobs };
