@@ -407,3 +407,30 @@ fn a_flexible_chain_lists_its_realizations_given_its_free_points() {
     let few = solve_with(&s, &SolveOptions { all: Some(10), ..SolveOptions::default() });
     assert_eq!((few.solutions.unwrap().len(), few.truncated), (10, true));
 }
+
+/// The issue's small counts: a triangle has 2 realizations (its apex on either side of its
+/// base); one dimensioned 10, 10, 50 has none, and says so with every step complete.
+#[test]
+fn a_triangle_has_two_realizations_and_an_impossible_one_none() {
+    let triangle = |c: &str| {
+        model(&format!(
+            r#"System(dim: 2,
+  entities: [Point(id: "a", at: [0, 0]), Point(id: "b", at: [40, 0]), Point(id: "c", at: [20, 8])],
+  constraints: [Distance(id: "ab", a: "a", b: "b", value: 40), Distance(id: "bc", a: "b", b: "c", value: {c}),
+                Distance(id: "ca", a: "c", b: "a", value: 25)])"#
+        ))
+    };
+    let all = SolveOptions { all: Some(64), ..SolveOptions::default() };
+    let s = triangle("25");
+    let sol = solve_with(&s, &all);
+    assert_eq!(sol.status, Status::Solved);
+    let found = sol.solutions.unwrap();
+    assert_eq!(found.len(), 2);
+    assert!(found.iter().all(|x| distances_hold(&s, x)));
+    assert!(point(&s, &found[0], "c").1 * point(&s, &found[1], "c").1 < 0.0, "mirror images");
+    let impossible = triangle("10");
+    let sol = solve_with(&impossible, &all);
+    assert_eq!(sol.status, Status::Inconsistent);
+    assert_eq!(sol.solutions.unwrap().len(), 0);
+    assert!(!sol.truncated && sol.plan.iter().all(|p| p.complete), "{:?}", sol.plan);
+}
