@@ -451,20 +451,24 @@ pub(crate) fn rank_at(
     let tracked = EchelonOptions::tracked();
     Ok(match backend {
         Backend::Exact => {
-            let jacobian: Jacobian<BigRational> = witness.jacobian(system, layout)?;
-            let generators = motions::generators::<BigRational>(system, layout, &witness.coords)?;
+            // Assembled in `Rat` (machine words while the numbers are small: a sketch's
+            // decimal coordinates), handed to the certificate as `BigRational`s.
+            let small: Jacobian<Rat> = witness.jacobian(system, layout)?;
+            let small_generators = motions::generators::<Rat>(system, layout, &witness.coords_in()?)?;
+            // Trivial motions, exactly: T and J·T have at most six columns.
+            let trivial = exact_trivial_motions(&small, &small_generators)?;
+            let big = |v: &Vec<Rat>| v.iter().map(BigRational::from).collect::<Vec<_>>();
+            let rows = small.rows.iter().map(to_big).collect::<Result<Vec<_>, _>>()?;
             // The displacements prove the dependencies of rigid circuits without lifting their
             // coefficients (thousands of digits at a sketch with decimal coordinates).
             let hint = KernelHint {
-                vectors: generators.clone(),
+                vectors: small_generators.iter().map(big).collect(),
                 groups: (0..layout.ncols()).map(|c| layout.owner(c).index()).collect(),
-                free_rows: jacobian.internal_count(),
+                free_rows: small.internal_count(),
             };
-            let certified = certify_rows(jacobian.ncols, &jacobian.rows, Some(&hint))?;
-            // Trivial motions, exactly: T and J·T have at most six columns.
-            let trivial = exact_trivial_motions(&jacobian, &generators)?;
-            let n = jacobian.rows.len();
-            let internal = jacobian.internal_count();
+            let certified = certify_rows(small.ncols, &rows, Some(&hint))?;
+            let n = small.rows.len();
+            let internal = small.internal_count();
             (
                 Outcome {
                     rank: certified.rank,
@@ -757,16 +761,23 @@ fn row_owners(system: &System, layout: &Layout, witness: &Witness) -> Vec<RowOwn
     owners
 }
 
+/// A row of [`Rat`]s as [`BigRational`]s (the certificate's type).
+fn to_big(row: &SparseRow<Rat>) -> Result<SparseRow<BigRational>, gcs_rank::RankError> {
+    row.map(|x| Ok(BigRational::from(x)))
+}
+
 /// `rank(T) − rank(J·T)` over ℚ, proven by the certified exact path.
 fn exact_trivial_motions(
-    jacobian: &Jacobian<BigRational>,
-    generators: &[Vec<BigRational>],
+    jacobian: &Jacobian<Rat>,
+    generators: &[Vec<Rat>],
 ) -> Result<usize, AnalysisError> {
     let k = generators.len();
-    let t_rows = generator_rows(generators);
+    let t_rows = generator_rows(generators).iter().map(to_big).collect::<Result<Vec<_>, _>>()?;
     let (t, _) = analyse_rows_exact(jacobian.ncols, &t_rows, false)?;
-    let jt: Vec<SparseRow<BigRational>> =
-        jt_rows(jacobian, generators, None).filter(|r| !r.is_zero()).collect();
+    let jt = jt_rows(jacobian, generators, None)
+        .filter(|r| !r.is_zero())
+        .map(|r| to_big(&r))
+        .collect::<Result<Vec<_>, _>>()?;
     let (jt, _) = analyse_rows_exact(k, &jt, false)?;
     Ok(t.rank - jt.rank)
 }

@@ -10,6 +10,7 @@ use crate::echelon::{EchelonOptions, Insertion, RowAnalysis, analyse_rows};
 use crate::error::RankError;
 use crate::modp::{ModP, ModQ, bigint_mod, inv_mod, nth_lifting_prime, with_modulus};
 use crate::sparse::{SparseRow, linear_combination};
+use crate::Rat;
 
 /// The second prime of multi-modular lifting, `2^64 − 59`.
 pub const SECOND_PRIME: u64 = 18_446_744_073_709_551_557;
@@ -558,8 +559,11 @@ struct KernelCertifier<'h> {
     columns: Vec<Vec<usize>>,
     /// Group → the free rows (independent modulo the prime) within it.
     free: Vec<Vec<usize>>,
-    /// Row → its products with the hint's vectors, exact (computed on demand).
-    products: Vec<Option<Vec<BigRational>>>,
+    /// Row → its products with the hint's vectors, exact (computed on demand, in [`Rat`]:
+    /// machine words while the numbers are small).
+    products: Vec<Option<Vec<Rat>>>,
+    /// The hint's vectors in [`Rat`].
+    vectors: Vec<Vec<Rat>>,
     /// The hint's vectors modulo the prime.
     vectors_p: Vec<Vec<ModP>>,
 }
@@ -595,6 +599,7 @@ impl<'h> KernelCertifier<'h> {
             columns,
             free,
             products: vec![None; first.outcomes.len()],
+            vectors: hint.vectors.iter().map(|v| v.iter().map(Rat::from).collect()).collect(),
             vectors_p,
         })
     }
@@ -604,14 +609,16 @@ impl<'h> KernelCertifier<'h> {
     }
 
     /// `row · v` for every hint vector, exactly.
-    fn products(&mut self, rows: &[SparseRow<BigRational>], r: usize) -> Option<&[BigRational]> {
+    fn products(&mut self, rows: &[SparseRow<BigRational>], r: usize) -> Option<&[Rat]> {
         if self.products[r].is_none() {
-            let mut out = Vec::with_capacity(self.hint.vectors.len());
-            for v in &self.hint.vectors {
-                let mut sum = <BigRational as Zero>::zero();
-                for (c, a) in rows[r].entries() {
+            let row: Vec<(usize, Rat)> =
+                rows[r].entries().iter().map(|(c, a)| (*c, Rat::from(a))).collect();
+            let mut out = Vec::with_capacity(self.vectors.len());
+            for v in &self.vectors {
+                let mut sum = Rat::ZERO;
+                for (c, a) in &row {
                     let x = v.get(*c)?;
-                    if !Zero::is_zero(x) {
+                    if !x.is_zero() {
                         sum += a * x;
                     }
                 }
@@ -674,7 +681,7 @@ impl<'h> KernelCertifier<'h> {
             return Some(false);
         }
         // The combinations of the vectors that the certificate's rows annihilate, exactly.
-        let mut products = crate::Echelon::<BigRational>::new(k, EchelonOptions::default());
+        let mut products = crate::Echelon::<Rat>::new(k, EchelonOptions::default());
         for &r in &set {
             if products.rank() == k {
                 break;
@@ -694,7 +701,7 @@ impl<'h> KernelCertifier<'h> {
             let lp: Vec<(usize, ModP)> = lambda
                 .entries()
                 .iter()
-                .map(|(g, x)| ModP::from_rational(x).map(|v| (*g, v)))
+                .map(|(g, x)| ModP::from_rat(x).map(|v| (*g, v)))
                 .collect::<Result<_, _>>()
                 .ok()?;
             let mut entries = Vec::with_capacity(width);
@@ -716,11 +723,11 @@ impl<'h> KernelCertifier<'h> {
         // The kernel of the certificate's rows is span(W): row i must vanish on it, exactly.
         let pi = self.products(rows, i)?.to_vec();
         Some(lambdas.iter().all(|lambda| {
-            let mut sum = <BigRational as Zero>::zero();
+            let mut sum = Rat::ZERO;
             for (g, x) in lambda.entries() {
                 sum += x * &pi[*g];
             }
-            Zero::is_zero(&sum)
+            sum.is_zero()
         }))
     }
 }
