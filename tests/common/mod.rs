@@ -6,7 +6,7 @@
 use gcs_analysis::{Analysis, AnalysisOptions, Backend, analyze};
 use gcs_jacobian::WitnessOptions;
 use gcs_model::System;
-use gcs_report::{ArithmeticName, BackendName, Report, WitnessName};
+use gcs_report::{ArithmeticName, BackendName, RankMethodName, Report, WitnessName};
 
 /// What the analysis decides, with ids instead of indices: the model's report (format §2)
 /// without what may depend on the backend, the seed, the witness or the drawing, so that it must
@@ -27,15 +27,17 @@ impl Verdict {
         r.seed = 0;
         r.tolerance = None;
         r.proof = None;
+        r.rank_method = RankMethodName::Witness;
         r.internal_equations = 0;
         r.float_qr_rank = None;
         r.clusters_arithmetic = ArithmeticName::None;
         r.sketch = None;
         r.witness_error_bound = None;
         r.uncertain = None;
-        // How global rigidity was decided (arithmetic, configuration, bound) is the backend's;
-        // `globally_rigid` itself stays.
+        // How global rigidity was decided (method, arithmetic, configuration, bound) is the
+        // backend's; `globally_rigid` itself stays.
         r.global_rigidity = None;
+        r.method = None;
         Verdict(r)
     }
 }

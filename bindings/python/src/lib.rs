@@ -167,6 +167,7 @@ impl NativeModel {
             seed,
             structural,
             decompose,
+            ..AnalyzeOptions::default()
         };
         let system = &self.model.system;
         let result = py.detach(|| {

@@ -153,6 +153,7 @@ fn analyze_options(o: &Options) -> Result<AnalyzeOptions, JsError> {
         seed: o.seed.unwrap_or(1),
         structural: o.structural,
         decompose: o.decompose,
+        ..AnalyzeOptions::default()
     })
 }
 

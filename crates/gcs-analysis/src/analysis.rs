@@ -5,7 +5,7 @@ use gcs_jacobian::{
     Jacobian, JacobianError, Layout, RowOwner, Witness, WitnessOptions, WitnessSource,
     find_witness, motions,
 };
-use gcs_model::{ConstraintIdx, System};
+use gcs_model::{ConstraintIdx, Dim, EntityIdx, EntityKind, Metric, Signature, System};
 use gcs_rank::{
     AMBIGUITY_BAND, BigRational, Echelon, EchelonOptions, Field, Insertion, KernelHint, ModP, ModQ,
     Proof, Rat, RowAnalysis, SparseRow, analyse_rows, analyse_rows_exact, analyse_rows_plain,
@@ -13,8 +13,8 @@ use gcs_rank::{
 };
 
 use gcs_decompose::{
-    Cluster, ClusterMethod, ClusterOptions, Decomposition, DecompositionNode, RemovalOrder,
-    Statistics,
+    Cluster, ClusterMethod, ClusterOptions, Decomposition, DecompositionNode, PebbleReport,
+    RemovalOrder, Statistics, pebble_game,
 };
 
 use crate::error::AnalysisError;
@@ -33,17 +33,41 @@ pub enum Arithmetic {
         /// The tolerance.
         tolerance: f64,
     },
+    /// No arithmetic: decided combinatorially (the pebble game of a 2D bar framework).
+    Combinatorial,
     /// Not computed (not asked for).
     None,
 }
 
+/// How the generic rank, the redundancies and the clusters were decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RankMethod {
+    /// The witness method: the Jacobian's rank at a generic witness.
+    Witness,
+    /// The (2,3) pebble game, for 2D frameworks of points and distances between them: by
+    /// Laman's theorem the same answer as any generic witness, with certainty and without
+    /// arithmetic ([`gcs_rigidity::pebble_game`]).
+    PebbleGame,
+}
+
+impl RankMethod {
+    /// The report name: `witness`, `pebble game`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RankMethod::Witness => "witness",
+            RankMethod::PebbleGame => "pebble game",
+        }
+    }
+}
+
 impl Arithmetic {
-    /// The report name: `rational`, `modp`, `float`, `none`.
+    /// The report name: `rational`, `modp`, `float`, `combinatorial`, `none`.
     pub fn name(self) -> &'static str {
         match self {
             Arithmetic::Rational => "rational",
             Arithmetic::ModP => "modp",
             Arithmetic::Float { .. } => "float",
+            Arithmetic::Combinatorial => "combinatorial",
             Arithmetic::None => "none",
         }
     }
@@ -129,6 +153,12 @@ pub struct AnalysisOptions {
     /// Whether to decide global rigidity (the stress-matrix test) of the system and of each
     /// cluster that is a distance framework: [`Analysis::global_rigidity`]. On by default.
     pub global_rigidity: bool,
+    /// Whether a 2D framework of points and distances between them is decided by the pebble
+    /// game ([`RankMethod::PebbleGame`]: the same rank, redundancies and clusters as the
+    /// witness, proven by Laman's theorem, without eliminating the Jacobian) with the exact
+    /// and modp backends, when no W-decomposition is asked for. On by default; off, the
+    /// witness decides everything.
+    pub pebble_game: bool,
 }
 
 impl Default for AnalysisOptions {
@@ -143,6 +173,7 @@ impl Default for AnalysisOptions {
             decomposition_budget: 20_000,
             sketch: true,
             global_rigidity: true,
+            pebble_game: true,
         }
     }
 }
@@ -218,6 +249,8 @@ pub struct Analysis {
     /// The same for each cluster, in the order of `clusters`: `None` for a cluster that is not
     /// a distance framework (its own points and distances).
     pub cluster_global_rigidity: Vec<Option<GlobalRigidity>>,
+    /// How the rank, the redundancies and the clusters were decided.
+    pub rank_method: RankMethod,
 }
 
 impl Analysis {
@@ -250,7 +283,12 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
     // A modular witness only serves the prime-field analyses; the others fall back on the
     // numerical projection (float) or refuse (rational: no exact witness).
     let modular = matches!(options.backend, Backend::Exact | Backend::ModP);
-    let witness_options = WitnessOptions { modular, ..options.witness.clone() };
+    let pebbles = pebble_framework(system, options);
+    let witness_options = WitnessOptions {
+        modular,
+        generic_rank: pebbles.as_ref().map(|p| p.game.rank),
+        ..options.witness.clone()
+    };
     let witness = find_witness(system, &layout, &witness_options)?;
     if witness.source == WitnessSource::Approximate
         && !matches!(options.backend, Backend::Float { .. })
@@ -265,7 +303,116 @@ pub fn analyze(system: &System, options: &AnalysisOptions) -> Result<Analysis, A
             AnalysisError::ApproximateWitness(why)
         });
     }
-    analyze_at(system, &layout, witness, options)
+    analyze_with(system, &layout, witness, options, pebbles)
+}
+
+/// A 2D framework of points and distances between distinct points, with nothing else, and its
+/// pebble game: what [`RankMethod::PebbleGame`] decides (when the options allow it).
+struct PebbleFramework {
+    bars: Vec<(usize, usize)>,
+    game: PebbleReport,
+}
+
+fn pebble_framework(system: &System, options: &AnalysisOptions) -> Option<PebbleFramework> {
+    if !options.pebble_game
+        || options.decompose
+        || !matches!(options.backend, Backend::Exact | Backend::ModP)
+        || system.dim() != Dim::Two
+        || system.entities().iter().any(|e| e.kind() != EntityKind::Point)
+    {
+        return None;
+    }
+    // Every entity is a point: entity indices are vertex indices.
+    let bars = system
+        .constraints()
+        .iter()
+        .map(|c| match c.signature {
+            Signature::Metric(Metric::DistancePointPoint(a, b)) if a != b => {
+                Some((a.index(), b.index()))
+            }
+            _ => None,
+        })
+        .collect::<Option<Vec<_>>>()?;
+    let game = pebble_game(system.entities().len(), &bars);
+    Some(PebbleFramework { bars, game })
+}
+
+/// The outcome of the pebble game in the witness analysis's terms (one row per bar, no
+/// entity-internal row), with the trivial motions at the witness; `None` when the witness's
+/// equations are not one row per bar (then the witness decides).
+fn pebble_outcome(
+    system: &System,
+    layout: &Layout,
+    witness: &Witness,
+    backend: Backend,
+    pebbles: &PebbleFramework,
+) -> Result<Option<(Outcome, usize, usize)>, AnalysisError> {
+    if layout.internal_rows() != 0
+        || witness.plan.constraints.iter().any(|p| p.rows.len() != 1)
+        || witness.source == WitnessSource::Modular
+    {
+        return Ok(None);
+    }
+    // Trivial motions, `rank(T) − rank(J·T)` at the witness, as the witness path has them
+    // (T has three columns: cheap).
+    let (trivial, proof) = match backend {
+        Backend::Exact => {
+            let jacobian: Jacobian<Rat> = witness.jacobian(system, layout)?;
+            let generators = motions::generators::<Rat>(system, layout, &witness.coords_in()?)?;
+            (exact_trivial_motions(&jacobian, &generators)?, Some(Proof::PebbleGame))
+        }
+        _ => {
+            let jacobian: Jacobian<ModP> = witness.jacobian(system, layout)?;
+            let generators = motions::generators::<ModP>(system, layout, &witness.coords_in()?)?;
+            (trivial_motions(&jacobian, &generators, EchelonOptions::default()), None)
+        }
+    };
+    let n = pebbles.bars.len();
+    Ok(Some((
+        Outcome {
+            rank: pebbles.game.rank,
+            dependent: pebbles.game.circuits.clone(),
+            trivial,
+            proof,
+            float_qr_rank: None,
+            margins: Vec::new(),
+            ambiguous_supports: Vec::new(),
+        },
+        n,
+        0,
+    )))
+}
+
+/// The pebble game's rigid components as clusters: their points in file order, and the
+/// distances between two of them.
+fn pebble_clusters(pebbles: &PebbleFramework) -> Vec<Cluster> {
+    let components = &pebbles.game.components;
+    // The components of each vertex (several at a hinge); each bar lies in exactly one.
+    let mut member: Vec<Vec<usize>> = Vec::new();
+    for (k, comp) in components.iter().enumerate() {
+        for &v in comp {
+            if member.len() <= v {
+                member.resize(v + 1, Vec::new());
+            }
+            member[v].push(k);
+        }
+    }
+    let mut constraints = vec![Vec::new(); components.len()];
+    for (i, &(a, b)) in pebbles.bars.iter().enumerate() {
+        let (ma, mb) = (&member[a], &member[b]);
+        if let Some(k) = ma.iter().find(|k| mb.contains(k)) {
+            constraints[*k].push(ConstraintIdx(i as u32));
+        }
+    }
+    components
+        .iter()
+        .zip(constraints)
+        .map(|(comp, constraints)| Cluster {
+            entities: comp.iter().map(|&v| EntityIdx(v as u32)).collect(),
+            constraints,
+            grounded: false,
+        })
+        .collect()
 }
 
 /// The outcome of inserting the rows, in some field.
@@ -625,9 +772,25 @@ pub fn analyze_at(
     // inside its `with_modulus` (nothing but plain numbers comes out).
     match witness.modulus {
         Some(q) if witness.source == WitnessSource::Modular && q != ModP::PRIME => {
-            gcs_rank::with_modulus(q, || analyze_in_field(system, layout, witness, options))
+            gcs_rank::with_modulus(q, || analyze_in_field(system, layout, witness, options, None))
         }
-        _ => analyze_in_field(system, layout, witness, options),
+        _ => analyze_in_field(system, layout, witness, options, None),
+    }
+}
+
+/// [`analyze_at`] with the pebble game already played (by [`analyze`]).
+fn analyze_with(
+    system: &System,
+    layout: &Layout,
+    witness: Witness,
+    options: &AnalysisOptions,
+    pebbles: Option<PebbleFramework>,
+) -> Result<Analysis, AnalysisError> {
+    match (pebbles, witness.source) {
+        (Some(p), source) if source != WitnessSource::Modular => {
+            analyze_in_field(system, layout, witness, options, Some(&p))
+        }
+        _ => analyze_at(system, layout, witness, options),
     }
 }
 
@@ -637,12 +800,20 @@ fn analyze_in_field(
     layout: &Layout,
     witness: Witness,
     options: &AnalysisOptions,
+    pebbles: Option<&PebbleFramework>,
 ) -> Result<Analysis, AnalysisError> {
     // At a modular witness everything is decided modulo the prime (the exact backend cannot
     // certify over ℚ at a point that is not rational).
     let modular = witness.source == WitnessSource::Modular;
     let backend = if modular { Backend::ModP } else { options.backend };
-    let (outcome, equations, internal) = rank_at(system, layout, &witness, backend)?;
+    let fast = match pebbles {
+        Some(p) => pebble_outcome(system, layout, &witness, backend, p)?.map(|o| (o, p)),
+        None => None,
+    };
+    let ((outcome, equations, internal), pebbles) = match fast {
+        Some((o, p)) => (o, Some(p)),
+        None => (rank_at(system, layout, &witness, backend)?, None),
+    };
     let redundant = redundancies(system, layout, &witness, &outcome);
     let uncertain = match options.backend {
         Backend::Float { .. } => Some(uncertain(system, layout, &witness, &outcome)),
@@ -671,7 +842,8 @@ fn analyze_in_field(
     let in_field = |arithmetic: Arithmetic| -> Result<ClusterResult, AnalysisError> {
         let exact = EchelonOptions::default();
         Ok(match arithmetic {
-            Arithmetic::None => (Vec::new(), None),
+            // (Combinatorial clusters come from the pebble game, never from here.)
+            Arithmetic::None | Arithmetic::Combinatorial => (Vec::new(), None),
             Arithmetic::Float { tolerance } => clusters_in::<f64>(
                 system,
                 layout,
@@ -692,6 +864,7 @@ fn analyze_in_field(
     };
     let clusters_arithmetic = match backend {
         _ if !options.clusters => Arithmetic::None,
+        _ if pebbles.is_some() => Arithmetic::Combinatorial,
         Backend::Float { tolerance } => Arithmetic::Float { tolerance },
         // Exact rationals (with a machine-word fast path) for the rational backends, and for
         // the exact one on systems small enough that rational fill-in stays cheap.
@@ -701,16 +874,46 @@ fn analyze_in_field(
         }
         Backend::Exact | Backend::ModP => Arithmetic::ModP,
     };
-    let (clusters, decomposition) = in_field(clusters_arithmetic)?;
+    let (clusters, decomposition) = match (clusters_arithmetic, pebbles) {
+        (Arithmetic::Combinatorial, Some(p)) => (pebble_clusters(p), None),
+        _ => in_field(clusters_arithmetic)?,
+    };
     let (decomposition, decomposition_statistics) = match decomposition {
         Some((d, s)) => (Some(d), Some(s)),
         None => (None, None),
     };
     let seed = options.witness.seed;
     let (global_rigidity, cluster_global_rigidity) = if options.global_rigidity {
-        let whole = global::model(system, layout, &witness, backend, seed);
-        let each =
-            global::clusters(system, layout, &witness, backend, seed, &clusters, whole.as_ref());
+        // With the pebble game, Jackson and Jordán's necessary condition (redundant rigidity)
+        // decides the common *no* without the stress test.
+        let in_circuit = pebbles.map(|p| p.game.in_circuit());
+        let whole = match (pebbles, &in_circuit) {
+            (Some(p), Some(inside)) => global::not_redundantly_rigid(
+                system.entities().len(),
+                p.bars.len(),
+                p.game.dof(system.entities().len()) == 0,
+                inside.iter().filter(|b| !**b).count(),
+            ),
+            _ => None,
+        }
+        .or_else(|| global::model(system, layout, &witness, backend, seed));
+        let decided = |k: usize| {
+            let inside = in_circuit.as_ref()?;
+            let c = &clusters[k];
+            let coloops = c.constraints.iter().filter(|b| !inside[b.index()]).count();
+            // A cluster is rigid by definition.
+            global::not_redundantly_rigid(c.entities.len(), c.constraints.len(), true, coloops)
+        };
+        let each = global::clusters(
+            system,
+            layout,
+            &witness,
+            backend,
+            seed,
+            &clusters,
+            whole.as_ref(),
+            decided,
+        );
         (whole, each)
     } else {
         (None, vec![None; clusters.len()])
@@ -740,6 +943,7 @@ fn analyze_in_field(
         uncertain,
         global_rigidity,
         cluster_global_rigidity,
+        rank_method: if pebbles.is_some() { RankMethod::PebbleGame } else { RankMethod::Witness },
     })
 }
 

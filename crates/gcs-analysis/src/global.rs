@@ -71,13 +71,19 @@ use crate::analysis::{Arithmetic, Backend};
 pub enum GlobalMethod {
     /// The stress-matrix test (Connelly; Gortler–Healy–Thurston), rigidity included.
     StressMatrix,
+    /// Jackson and Jordán's characterisation in the plane (3-connected and redundantly rigid,
+    /// or complete on at most 3 vertices), here only its necessary half: a 2D framework that
+    /// the pebble game shows not rigid, or with a bar in no circuit, on 4 or more vertices, is
+    /// not globally rigid — with certainty, without arithmetic.
+    JacksonJordan,
 }
 
 impl GlobalMethod {
-    /// The report name: `stress matrix`.
+    /// The report name: `stress matrix`, `Jackson–Jordán`.
     pub fn name(self) -> &'static str {
         match self {
             GlobalMethod::StressMatrix => "stress matrix",
+            GlobalMethod::JacksonJordan => "Jackson–Jordán",
         }
     }
 }
@@ -414,6 +420,36 @@ fn answer(g: Graph<'_>, draw: Draw, arithmetic: Arithmetic, random: bool) -> Glo
     }
 }
 
+/// The answer of Jackson and Jordán's necessary condition for a 2D framework on `n` vertices
+/// with `bars` bars, which the pebble game found `rigid` or not, `coloops` of its bars in no
+/// circuit: *not* globally rigid, certainly, when `n ≥ 4` and it is not redundantly rigid (not
+/// rigid, or some bar in no circuit); `None` when the condition holds and the stress test must
+/// decide. (`unstressed_bars` counts the bars in no circuit, those a generic stress leaves at
+/// zero, as the stress test does for a rigid framework.)
+pub(crate) fn not_redundantly_rigid(
+    n: usize,
+    bars: usize,
+    rigid: bool,
+    coloops: usize,
+) -> Option<GlobalRigidity> {
+    if n < 4 || (rigid && coloops == 0) {
+        return None;
+    }
+    Some(GlobalRigidity {
+        globally_rigid: false,
+        method: GlobalMethod::JacksonJordan,
+        arithmetic: Arithmetic::Combinatorial,
+        points: n,
+        bars,
+        rigid,
+        stress_rank: 0,
+        unstressed_bars: if rigid { coloops } else { 0 },
+        target_rank: target_rank(n, 2),
+        random_configuration: false,
+        error_bound: None,
+    })
+}
+
 /// The test of the whole system, when it is a distance framework.
 pub(crate) fn model(
     system: &System,
@@ -437,6 +473,7 @@ pub(crate) fn clusters(
     seed: u64,
     clusters: &[gcs_decompose::Cluster],
     whole: Option<&GlobalRigidity>,
+    decided: impl Fn(usize) -> Option<GlobalRigidity>,
 ) -> Vec<Option<GlobalRigidity>> {
     clusters
         .iter()
@@ -448,6 +485,9 @@ pub(crate) fn clusters(
                 && c.constraints.len() == system.constraints().len()
             {
                 return Some(w.clone());
+            }
+            if let Some(answer) = decided(k) {
+                return Some(answer);
             }
             let f = distance_framework(system, &c.entities, &c.constraints)?;
             Some(stress_test(&f, layout, witness, backend, seed.wrapping_add(k as u64 + 1)))

@@ -34,7 +34,7 @@ pub mod global;
 mod sketch;
 
 pub use analysis::{
-    Analysis, AnalysisOptions, Arithmetic, Backend, Redundancy, analyze, analyze_at,
+    Analysis, AnalysisOptions, Arithmetic, Backend, RankMethod, Redundancy, analyze, analyze_at,
     modular_error_bound,
 };
 pub use error::AnalysisError;

@@ -95,11 +95,14 @@ fn known_answers_in_every_backend() {
     for (name, dim, edges, rigid, yes) in cases() {
         for seed in [1, 2] {
             let s = model(name, dim, &edges, seed);
-            for backend in BACKENDS {
-                let a = analyze(&s, &AnalysisOptions { backend, ..AnalysisOptions::default() })
+            for (backend, pebble_game) in
+                BACKENDS.into_iter().flat_map(|b| [(b, false), (b, true)])
+            {
+                let options = AnalysisOptions { backend, pebble_game, ..AnalysisOptions::default() };
+                let a = analyze(&s, &options)
                     .unwrap_or_else(|e| panic!("{name} {backend:?}: {e}"));
                 let g = a.global_rigidity.as_ref().unwrap_or_else(|| panic!("{name}: absent"));
-                let at = format!("{name}, {}, seed {seed}", backend.name());
+                let at = format!("{name}, {}, seed {seed}, pebble game {pebble_game}", backend.name());
                 assert_eq!(g.globally_rigid, yes, "{at}: {g:?}");
                 assert_eq!(g.rigid, rigid, "{at}: {g:?}");
                 assert_eq!(
@@ -107,7 +110,17 @@ fn known_answers_in_every_backend() {
                     rigid,
                     "{at}: the analysis and the test disagree on rigidity"
                 );
+                // The pebble game (2D, exact backends) decides the *no* of a framework that is
+                // not redundantly rigid by Jackson and Jordán's condition, with certainty.
+                let combinatorial = a.rank_method == gcs_analysis::RankMethod::PebbleGame
+                    && !yes
+                    && g.points >= 4;
                 match backend {
+                    _ if combinatorial => {
+                        assert_eq!(g.arithmetic, Arithmetic::Combinatorial, "{at}");
+                        assert_eq!(g.method.name(), "Jackson–Jordán", "{at}");
+                        assert!(g.error_bound.is_none(), "{at}");
+                    }
                     Backend::Float { .. } => {
                         assert!(matches!(g.arithmetic, Arithmetic::Float { .. }));
                         assert!(g.error_bound.is_none());
@@ -159,11 +172,18 @@ fn unstressed_bars_decide_no_without_the_stress_matrix() {
     edges.extend([(0, 4), (1, 4)]);
     for backend in [Backend::Exact, Backend::ModP] {
         let s = model("K4 and a hanging vertex", Dim::Two, &edges, 3);
-        let a = analyze(&s, &AnalysisOptions { backend, ..AnalysisOptions::default() }).unwrap();
+        let witness_only = AnalysisOptions { backend, pebble_game: false, ..Default::default() };
+        let a = analyze(&s, &witness_only).unwrap();
         let g = a.global_rigidity.unwrap();
         assert!(g.rigid && !g.globally_rigid, "{g:?}");
         assert_eq!((g.unstressed_bars, g.stress_rank), (2, 0), "{g:?}");
         assert!(g.random_configuration && g.error_bound.is_some_and(|b| b < 1e-15));
+        // The pebble game finds the same two bars in no circuit, and says no for certain.
+        let a = analyze(&s, &AnalysisOptions { backend, ..Default::default() }).unwrap();
+        let g = a.global_rigidity.unwrap();
+        assert!(g.rigid && !g.globally_rigid, "{g:?}");
+        assert_eq!((g.unstressed_bars, g.stress_rank), (2, 0), "{g:?}");
+        assert_eq!((g.arithmetic, g.error_bound), (Arithmetic::Combinatorial, None));
     }
     // Without the hanging vertex: every bar stressed, and the stress matrix says yes.
     let s = model("K4", Dim::Two, &complete(4), 3);

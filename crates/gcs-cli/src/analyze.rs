@@ -21,6 +21,8 @@ pub(crate) struct Settings {
     pub(crate) structural: bool,
     /// Add the W-decomposition (`--decompose`).
     pub(crate) decompose: bool,
+    /// Let the pebble game decide 2D bar frameworks (not `--no-pebble-game`).
+    pub(crate) pebble_game: bool,
     /// Write the W-decompositions as Graphviz DOT to this file (`--dot`).
     pub(crate) dot: Option<PathBuf>,
     /// Draw each model as SVG into this directory (`--svg`).
@@ -68,6 +70,7 @@ fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> 
         seed: settings.seed,
         structural: settings.structural,
         decompose: settings.decompose,
+        pebble_game: settings.pebble_game,
     };
     let analyzed = analyze(&system, &options).map_err(|e| format!("{at}: {e}{}", hint(&e)))?;
     let dot = match (&settings.dot, &analyzed.analysis.decomposition) {

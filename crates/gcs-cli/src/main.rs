@@ -87,6 +87,11 @@ enum Command {
         /// §5): a tree of rigid subsystems (a DR-plan) whose leaves are W-indecomposable.
         #[arg(long)]
         decompose: bool,
+        /// Decide a 2D model of points and distances by the witness too, not by the (2,3)
+        /// pebble game (which gives the same rank, redundancies and clusters, proven by Laman's
+        /// theorem, faster; the report's `rank_method` says which decided).
+        #[arg(long)]
+        no_pebble_game: bool,
         /// Write the W-decompositions as a Graphviz DOT graph to FILE (implies --decompose):
         /// one node per rigid subsystem, labelled with its entity ids, an edge to each
         /// subsystem it decomposes into. Render with `dot -Tsvg FILE`.
@@ -264,6 +269,7 @@ fn main() -> ExitCode {
             format,
             structural,
             decompose,
+            no_pebble_game,
             dot,
             svg,
             jobs,
@@ -316,6 +322,9 @@ fn main() -> ExitCode {
             if decompose {
                 child_args.push("--decompose".to_owned());
             }
+            if no_pebble_game {
+                child_args.push("--no-pebble-game".to_owned());
+            }
             if let Some(dir) = &svg {
                 child_args.push("--svg".to_owned());
                 child_args.push(dir.display().to_string());
@@ -328,6 +337,7 @@ fn main() -> ExitCode {
                     format,
                     structural,
                     decompose,
+                    pebble_game: !no_pebble_game,
                     dot,
                     svg,
                     jobs: jobs.unwrap_or_else(cores),

@@ -37,9 +37,11 @@
 //! ```
 
 mod clusters;
+pub mod pebble;
 mod rigid;
 mod wdec;
 
 pub use clusters::{Cluster, ClusterOptions, Decomposition, clusters};
+pub use pebble::{PebbleReport, pebble_game};
 pub use rigid::ClusterMethod;
 pub use wdec::{DecompositionNode, RemovalOrder, Statistics};

@@ -74,11 +74,16 @@ pub struct WitnessOptions {
     /// one can: for analyses in a prime field. Off, the last resort is the numerical
     /// projection (for `f64`).
     pub modular: bool,
+    /// The generic rank, when something else has proven it (the pebble game of a 2D bar
+    /// framework, by Laman's theorem): a sketch whose rank modulo the prime reaches it is
+    /// generic — the rank at a point is at most the generic rank, and modulo a prime at most
+    /// the rank over ℚ — and is taken as the witness without the perturbation test.
+    pub generic_rank: Option<usize>,
 }
 
 impl Default for WitnessOptions {
     fn default() -> Self {
-        WitnessOptions { seed: 1, rounds: 1, modular: true }
+        WitnessOptions { seed: 1, rounds: 1, modular: true, generic_rank: None }
     }
 }
 
@@ -302,6 +307,18 @@ pub fn find_witness(
         match plan(system, layout, &pref, &sketch)? {
             Ok(p) => {
                 let r = rank_modp(system, layout, &pref, &p, false);
+                if options.generic_rank == Some(r) {
+                    // Proven generic: no perturbation can do better.
+                    return Ok(Witness {
+                        coords: pref.iter().map(Rat::to_big).collect(),
+                        source: WitnessSource::Sketch,
+                        plan: p,
+                        genericity_tested: true,
+                        sketch_rejected: None,
+                        no_exact_witness: None,
+                        modulus: None,
+                    });
+                }
                 best = Some((pref.clone(), p, r, WitnessSource::Sketch));
             }
             Err(u) => sketch_rejected = Some(describe(system, &u)),

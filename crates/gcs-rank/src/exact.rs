@@ -48,6 +48,9 @@ pub enum Proof {
         /// The primes used to lift the others (the elimination prime first).
         primes: Vec<u64>,
     },
+    /// No arithmetic: the generic rank of a 2D bar framework by the (2,3) pebble game, which
+    /// Laman's theorem proves equal to it (`gcs_rigidity::pebble_game`).
+    PebbleGame,
 }
 
 impl Proof {
@@ -58,6 +61,7 @@ impl Proof {
             Proof::ModularCertified { .. } => "modular",
             Proof::MultiModularCertified { .. } => "multimodular",
             Proof::KernelCertified { .. } => "kernel",
+            Proof::PebbleGame => "pebble game",
         }
     }
 }
@@ -83,6 +87,9 @@ impl std::fmt::Display for Proof {
                     write!(f, ", others lifted modulo {}", product(primes))?;
                 }
                 Ok(())
+            }
+            Proof::PebbleGame => {
+                write!(f, "the (2,3) pebble game of the bar framework (Laman's theorem)")
             }
         }
     }

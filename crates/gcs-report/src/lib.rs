@@ -45,8 +45,8 @@ pub use check::CheckReport;
 pub use error::ReportError;
 pub use import::{ImportReport, SkippedReport};
 pub use report::{
-    ArithmeticName, BackendName, GlobalRigidityReport, ProofName, RedundantReport, Report, SCHEMA,
-    WitnessName, failure_json, text, text_with_solution,
+    ArithmeticName, BackendName, GlobalRigidityReport, ProofName, RankMethodName, RedundantReport,
+    Report, SCHEMA, WitnessName, failure_json, text, text_with_solution,
 };
 pub use solve::{CheckedReport, NoSolutionReport, PlanReport, SolveReport};
 pub use structural::{

@@ -3,7 +3,8 @@
 //! ([`text`]).
 
 use gcs_analysis::{
-    Analysis, Arithmetic, Backend, GlobalRigidity, Position, Redundancy, SketchAnalysis,
+    Analysis, Arithmetic, Backend, GlobalRigidity, Position, RankMethod, Redundancy,
+    SketchAnalysis,
 };
 use gcs_jacobian::WitnessSource;
 use gcs_model::{ConstraintIdx, System};
@@ -86,6 +87,9 @@ pub enum ProofName {
     Kernel,
     /// Rational elimination.
     Rational,
+    /// The pebble game of a 2D bar framework (Laman's theorem): no arithmetic.
+    #[serde(rename = "pebble game")]
+    PebbleGame,
 }
 
 impl From<&Proof> for ProofName {
@@ -95,6 +99,7 @@ impl From<&Proof> for ProofName {
             Proof::ModularCertified { .. } => ProofName::Modular,
             Proof::MultiModularCertified { .. } => ProofName::Multimodular,
             Proof::KernelCertified { .. } => ProofName::Kernel,
+            Proof::PebbleGame => ProofName::PebbleGame,
         }
     }
 }
@@ -109,8 +114,31 @@ pub enum ArithmeticName {
     Modp,
     /// `f64`.
     Float,
+    /// No arithmetic: the pebble game.
+    Combinatorial,
     /// Not computed.
     None,
+}
+
+/// How the rank, the redundancies and the clusters were decided (`rank_method`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RankMethodName {
+    /// At a generic witness.
+    #[default]
+    #[serde(rename = "witness")]
+    Witness,
+    /// By the (2,3) pebble game (2D frameworks of points and distances).
+    #[serde(rename = "pebble game")]
+    PebbleGame,
+}
+
+impl From<RankMethod> for RankMethodName {
+    fn from(m: RankMethod) -> Self {
+        match m {
+            RankMethod::Witness => RankMethodName::Witness,
+            RankMethod::PebbleGame => RankMethodName::PebbleGame,
+        }
+    }
 }
 
 impl From<Arithmetic> for ArithmeticName {
@@ -119,6 +147,7 @@ impl From<Arithmetic> for ArithmeticName {
             Arithmetic::Rational => ArithmeticName::Rational,
             Arithmetic::ModP => ArithmeticName::Modp,
             Arithmetic::Float { .. } => ArithmeticName::Float,
+            Arithmetic::Combinatorial => ArithmeticName::Combinatorial,
             Arithmetic::None => ArithmeticName::None,
         }
     }
@@ -216,6 +245,10 @@ pub struct Report {
     /// How the exact backend proved its rank.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub proof: Option<ProofName>,
+    /// How the rank, the redundancies and the clusters were decided: `witness` or `pebble
+    /// game`.
+    #[serde(default)]
+    pub rank_method: RankMethodName,
     /// Entity-internal rows among `equations`.
     pub internal_equations: usize,
     /// The float backend's rank by column-pivoted QR (a cross-check).
@@ -267,7 +300,8 @@ pub struct GlobalRigidityReport {
     pub unstressed_bars: usize,
     /// The rank that proves global rigidity: `n − d − 1`.
     pub target_rank: usize,
-    /// `witness` or `random`: the configuration the answer was decided at.
+    /// `witness` or `random`: the configuration the answer was decided at (`none` when the
+    /// pebble game decided it, without one).
     pub configuration: String,
     /// For a no modulo p: the probability bound that it is wrong (Schwartz–Zippel).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -284,7 +318,12 @@ impl From<&GlobalRigidity> for GlobalRigidityReport {
             stress_rank: g.stress_rank,
             unstressed_bars: g.unstressed_bars,
             target_rank: g.target_rank,
-            configuration: if g.random_configuration { "random" } else { "witness" }.to_owned(),
+            configuration: match (g.arithmetic, g.random_configuration) {
+                (Arithmetic::Combinatorial, _) => "none",
+                (_, true) => "random",
+                (_, false) => "witness",
+            }
+            .to_owned(),
             error_bound: g.error_bound,
         }
     }
@@ -414,6 +453,7 @@ impl Report {
                 Backend::Exact | Backend::Rational | Backend::Rug | Backend::ModP => None,
             },
             proof: a.proof.as_ref().map(ProofName::from),
+            rank_method: a.rank_method.into(),
             internal_equations: a.internal_equations,
             float_qr_rank: a.float_qr_rank,
             structural: s.map(|s| structural::report(system, s)),

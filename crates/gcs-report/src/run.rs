@@ -150,11 +150,20 @@ pub struct AnalyzeOptions {
     pub structural: bool,
     /// W-decompose every cluster (`--decompose`).
     pub decompose: bool,
+    /// Decide 2D bar frameworks by the pebble game (not `--no-pebble-game`; see
+    /// [`AnalysisOptions::pebble_game`]).
+    pub pebble_game: bool,
 }
 
 impl Default for AnalyzeOptions {
     fn default() -> Self {
-        AnalyzeOptions { backend: Backend::Exact, seed: 1, structural: false, decompose: false }
+        AnalyzeOptions {
+            backend: Backend::Exact,
+            seed: 1,
+            structural: false,
+            decompose: false,
+            pebble_game: true,
+        }
     }
 }
 
@@ -219,6 +228,7 @@ pub fn analyze(system: &System, options: &AnalyzeOptions) -> Result<Analyzed, Re
         backend: options.backend,
         witness: WitnessOptions { seed: options.seed, ..WitnessOptions::default() },
         decompose: options.decompose,
+        pebble_game: options.pebble_game,
         ..AnalysisOptions::default()
     };
     let analysis =

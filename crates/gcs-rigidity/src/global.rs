@@ -13,76 +13,7 @@
 //!
 //! Parallel edges and loops are ignored: global rigidity depends on the simple graph only.
 
-/// The (2,3)-pebble game's state: two pebbles per vertex, accepted edges oriented.
-#[derive(Clone, Debug)]
-struct Pebbles {
-    pebbles: Vec<u8>,
-    out: Vec<Vec<usize>>,
-}
-
-impl Pebbles {
-    fn new(n: usize) -> Self {
-        Pebbles { pebbles: vec![2; n], out: vec![Vec::new(); n] }
-    }
-
-    /// Moves a free pebble to `start` along a directed path avoiding `other`, reversing it.
-    fn fetch(&mut self, start: usize, other: usize) -> bool {
-        let n = self.pebbles.len();
-        let mut from = vec![usize::MAX; n];
-        from[start] = start;
-        from[other] = other;
-        let mut stack = vec![start];
-        while let Some(x) = stack.pop() {
-            for i in 0..self.out[x].len() {
-                let y = self.out[x][i];
-                if from[y] != usize::MAX {
-                    continue;
-                }
-                from[y] = x;
-                if self.pebbles[y] > 0 {
-                    // Reverse the path start → … → y; the pebble moves to start.
-                    self.pebbles[y] -= 1;
-                    self.pebbles[start] += 1;
-                    let mut b = y;
-                    while b != start {
-                        let a = from[b];
-                        let k = self.out[a].iter().position(|&t| t == b).unwrap_or(0);
-                        self.out[a].swap_remove(k);
-                        self.out[b].push(a);
-                        b = a;
-                    }
-                    return true;
-                }
-                stack.push(y);
-            }
-        }
-        false
-    }
-
-    /// Adds the edge `uv` if it is independent of the accepted ones (four pebbles gathered on
-    /// its ends); returns whether it was.
-    fn add(&mut self, u: usize, v: usize) -> bool {
-        while self.pebbles[u] < 2 && self.fetch(u, v) {}
-        while self.pebbles[v] < 2 && self.fetch(v, u) {}
-        if self.pebbles[u] + self.pebbles[v] < 4 {
-            return false;
-        }
-        self.pebbles[u] -= 1;
-        self.out[u].push(v);
-        true
-    }
-
-    /// Removes the accepted edge `uv` (in whichever orientation it has).
-    fn remove(&mut self, u: usize, v: usize) {
-        for (a, b) in [(u, v), (v, u)] {
-            if let Some(k) = self.out[a].iter().position(|&t| t == b) {
-                self.out[a].swap_remove(k);
-                self.pebbles[a] += 1;
-                return;
-            }
-        }
-    }
-}
+use gcs_decompose::pebble::Game as Pebbles;
 
 /// The simple graph: each unordered pair once, loops and out-of-range vertices dropped.
 fn simple(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, usize)> {
@@ -100,7 +31,7 @@ fn simple(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, usize)> {
 /// generic rigidity matroid).
 fn pebble_game(n: usize, edges: &[(usize, usize)]) -> (Pebbles, Vec<bool>) {
     let mut p = Pebbles::new(n);
-    let accepted = edges.iter().map(|&(u, v)| p.add(u, v)).collect();
+    let accepted = edges.iter().enumerate().map(|(i, &(u, v))| p.add(u, v, i)).collect();
     (p, accepted)
 }
 
@@ -134,7 +65,7 @@ pub fn redundantly_rigid(n: usize, edges: &[(usize, usize)]) -> bool {
     e.iter().zip(&accepted).filter(|(_, a)| **a).all(|(&(u, v), _)| {
         let mut q = p.clone();
         q.remove(u, v);
-        others.iter().any(|&(a, b)| q.add(a, b))
+        others.iter().any(|&(a, b)| q.add(a, b, usize::MAX))
     })
 }
 

@@ -82,6 +82,7 @@ pub use dor::{DorOracle, RuleDor};
 pub use error::RigidityError;
 pub use global::{jackson_jordan, k_connected, laman_rigid, redundantly_rigid};
 pub use network::{Network, Object, Share, Subsystem};
+pub use gcs_decompose::{PebbleReport, pebble_game};
 pub use report::{StructuralReport, structural_analysis};
 pub use rigidity::{
     RigidityAnalysis, Verdict, dense, dense_analysis, dense_analysis_in, dense_in, minimal_dense,

@@ -1,0 +1,339 @@
+//! The (2,3) pebble game of Jacobs and Hendrickson (*An algorithm for two-dimensional
+//! rigidity percolation: the pebble game*, J. Comput. Phys. 137, 1997), in the form of Lee
+//! and Streinu (*Pebble game algorithms and sparse graphs*, Discrete Math. 308, 2008): the
+//! generic rigidity of 2D bar frameworks, without numbers.
+//!
+//! By Laman's theorem the generic rigidity matroid of a 2D bar framework is the
+//! (2,3)-sparsity matroid of its graph, so for points joined by distances in the plane this
+//! answers exactly what the witness method answers at a generic configuration (the witness
+//! decides it with probability and the game with certainty): the rank, which bars are
+//! redundant and with which earlier bars (the fundamental circuits, taken in the order the
+//! bars are given, as the witness's greedy elimination takes its rows), and the maximal rigid
+//! components.
+//!
+//! **The game.** Every vertex holds two pebbles; a bar is accepted (independent) when four
+//! pebbles can be gathered on its two end points, and is then covered by a pebble of one of
+//! them and directed away from it. A pebble is fetched along a directed path, reversing it.
+//! When the fourth pebble cannot be fetched, the vertices reachable from the two ends (which
+//! then hold three pebbles) span the smallest tight subgraph containing both — a set `X`
+//! whose accepted bars number `2|X| − 3` — and the bar's fundamental circuit is the bar with
+//! the accepted bars inside `X`. (A tight set containing both ends is closed under the
+//! directed bars, since its three pebbles are on the ends: so it contains everything reachable
+//! from them; and the reachable set is tight, since no pebble was found in it.)
+//!
+//! **Components.** A maximal rigid component is found from any bar not yet in one: with three
+//! pebbles on its ends, a vertex is rigid with them exactly when no pebble can be fetched to it
+//! (Lee–Streinu, §5). Each bar lies in exactly one component; vertices on no bar are
+//! components of their own.
+//!
+//! **Cost.** Each insertion is at most four depth-first searches, `O(n + m)` each: `O(n·m)`
+//! in the worst case and near-linear on the sparse graphs of sketches; the components add
+//! `O(n)` searches per component.
+
+/// What the pebble game finds for a 2D bar framework.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PebbleReport {
+    /// The rank of the generic rigidity matrix: the number of independent bars.
+    pub rank: usize,
+    /// For each bar, in the order given: `None` when independent of the bars before it, else
+    /// the indices of the earlier independent bars of its fundamental circuit, ascending (a
+    /// bar from a vertex to itself has an empty circuit: its row is zero).
+    pub circuits: Vec<Option<Vec<usize>>>,
+    /// The maximal rigid components as vertex sets, each ascending, ordered by their first
+    /// vertex; every bar's two end points lie in exactly one of them, and a vertex on no bar
+    /// is a component of its own.
+    pub components: Vec<Vec<usize>>,
+}
+
+impl PebbleReport {
+    /// The generic degrees of freedom left beyond the three trivial motions of the plane
+    /// (for two or more vertices; a single vertex has two and none is trivial beyond them).
+    pub fn dof(&self, vertices: usize) -> usize {
+        match vertices {
+            0 => 0,
+            1 => 0,
+            n => (2 * n).saturating_sub(self.rank).saturating_sub(3),
+        }
+    }
+
+    /// For each bar, whether it lies in some circuit (is not a coloop): the dependent bars,
+    /// and the independent ones in the fundamental circuit of some dependent bar — a basis
+    /// element is in a circuit exactly when it is in one of its fundamental circuits (its
+    /// fundamental cocircuit is then more than itself). A framework whose bars all lie in
+    /// circuits, and that is rigid, is *redundantly rigid*: it stays rigid without any one bar.
+    pub fn in_circuit(&self) -> Vec<bool> {
+        let mut inside: Vec<bool> = self.circuits.iter().map(Option::is_some).collect();
+        for c in self.circuits.iter().flatten() {
+            for &b in c {
+                inside[b] = true;
+            }
+        }
+        inside
+    }
+}
+
+/// The pebble game's state: free pebbles per vertex and the accepted bars, directed (for
+/// callers that add and remove bars themselves, as the redundant-rigidity test does).
+#[derive(Clone, Debug)]
+pub struct Game {
+    pebbles: Vec<u8>,
+    /// Out-neighbours: `out[u]` holds `(v, bar)` for each accepted bar covered by `u`.
+    out: Vec<Vec<(u32, u32)>>,
+    /// Search marks (by generation, so that nothing is cleared between searches).
+    seen: Vec<u32>,
+    generation: u32,
+    /// The search's predecessor of each vertex: `(vertex, index in its out list)`.
+    parent: Vec<(u32, u32)>,
+    /// How far each vertex's out list has been scanned in the current search.
+    cursor: Vec<u32>,
+    stack: Vec<u32>,
+    /// The vertices the last search marked, in order (the root first).
+    trail: Vec<u32>,
+}
+
+impl Game {
+    /// `n` vertices with two pebbles each, no bar.
+    pub fn new(n: usize) -> Game {
+        Game {
+            pebbles: vec![2; n],
+            out: vec![Vec::new(); n],
+            seen: vec![0; n],
+            generation: 0,
+            parent: vec![(0, 0); n],
+            cursor: vec![0; n],
+            stack: Vec::new(),
+            trail: Vec::new(),
+        }
+    }
+
+    /// Accepts the bar `uv` (numbered `bar`) if it is independent of the accepted ones: four
+    /// pebbles gathered on its ends. Returns whether it was.
+    pub fn add(&mut self, u: usize, v: usize, bar: usize) -> bool {
+        if u == v || !self.gather(u, v, 4) {
+            return false;
+        }
+        self.pebbles[u] -= 1;
+        self.out[u].push((v as u32, bar as u32));
+        true
+    }
+
+    /// Removes the accepted bar `uv` (in whichever direction it has); its pebble is freed.
+    pub fn remove(&mut self, u: usize, v: usize) {
+        for (a, b) in [(u, v), (v, u)] {
+            if let Some(k) = self.out[a].iter().position(|&(t, _)| t as usize == b) {
+                self.out[a].swap_remove(k);
+                self.pebbles[a] += 1;
+                return;
+            }
+        }
+    }
+
+    /// A fresh search mark.
+    fn next_generation(&mut self) -> u32 {
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.seen.iter_mut().for_each(|s| *s = 0);
+            self.generation = 1;
+        }
+        self.generation
+    }
+
+    /// Fetches one pebble to `root` from a vertex reachable from it along the directed bars,
+    /// without passing through `blocked`; reverses the path. On failure, the vertices marked
+    /// with the current generation are `blocked` and those reachable from `root` avoiding it.
+    fn fetch(&mut self, root: usize, blocked: &[usize]) -> bool {
+        let g = self.next_generation();
+        for &b in blocked {
+            self.seen[b] = g;
+        }
+        self.search(root, g)
+    }
+
+    /// The depth-first search of [`Game::fetch`] with the marks of generation `g` kept (so
+    /// that several failed searches mark the union of what they reached).
+    fn search(&mut self, root: usize, g: u32) -> bool {
+        self.seen[root] = g;
+        self.cursor[root] = 0;
+        self.trail.clear();
+        self.trail.push(root as u32);
+        self.stack.clear();
+        self.stack.push(root as u32);
+        while let Some(&x) = self.stack.last() {
+            let x = x as usize;
+            let mut next = None;
+            while let Some(&(y, _)) = self.out[x].get(self.cursor[x] as usize) {
+                let k = self.cursor[x];
+                self.cursor[x] += 1;
+                if self.seen[y as usize] != g {
+                    next = Some((y as usize, k));
+                    break;
+                }
+            }
+            let Some((y, k)) = next else {
+                self.stack.pop();
+                continue;
+            };
+            self.seen[y] = g;
+            self.trail.push(y as u32);
+            self.parent[y] = (x as u32, k);
+            if self.pebbles[y] > 0 {
+                self.reverse_path(root, y);
+                return true;
+            }
+            self.cursor[y] = 0;
+            self.stack.push(y as u32);
+        }
+        false
+    }
+
+    /// Moves a pebble from `end` to `root` along the search tree, reversing each bar on the
+    /// way.
+    fn reverse_path(&mut self, root: usize, end: usize) {
+        self.pebbles[end] -= 1;
+        self.pebbles[root] += 1;
+        let mut y = end;
+        while y != root {
+            let (x, k) = self.parent[y];
+            let (x, k) = (x as usize, k as usize);
+            // `k` is still y's slot: a path's bars are all distinct and each list is touched
+            // once, after its successor's.
+            let (to, bar) = self.out[x].swap_remove(k);
+            debug_assert_eq!(to as usize, y);
+            self.out[y].push((x as u32, bar));
+            y = x;
+        }
+    }
+
+    /// Gathers pebbles on `u` and `v` until they hold `want` together (at most four); returns
+    /// whether it succeeded. On failure the current generation marks exactly the vertices
+    /// reachable from `u` and `v`.
+    fn gather(&mut self, u: usize, v: usize, want: u8) -> bool {
+        loop {
+            if self.pebbles[u] + self.pebbles[v] >= want {
+                return true;
+            }
+            if self.pebbles[u] < 2 && self.fetch(u, &[v]) {
+                continue;
+            }
+            if self.pebbles[v] < 2 && self.fetch(v, &[u]) {
+                continue;
+            }
+            // Neither end can get one: mark everything reachable from both ends (no pebble
+            // is found there, or a fetch above would have found it).
+            let g = self.next_generation();
+            let found = self.search(u, g) || self.search(v, g);
+            debug_assert!(!found);
+            return false;
+        }
+    }
+}
+
+/// Plays the (2,3) pebble game on `n` vertices with the given bars, in order (see the module
+/// documentation). A bar with an end point `>= n` is ignored: its circuit is `None` and it
+/// counts for nothing (callers validate their input).
+pub fn pebble_game(n: usize, bars: &[(usize, usize)]) -> PebbleReport {
+    let mut game = Game::new(n);
+    let mut listed = vec![u32::MAX; n];
+    let mut rank = 0;
+    let mut circuits = Vec::with_capacity(bars.len());
+    for (i, &(u, v)) in bars.iter().enumerate() {
+        if u >= n || v >= n {
+            circuits.push(None);
+            continue;
+        }
+        if u == v {
+            circuits.push(Some(Vec::new()));
+            continue;
+        }
+        if game.add(u, v, i) {
+            rank += 1;
+            circuits.push(None);
+        } else {
+            // The accepted bars inside the smallest tight set holding both ends: everything
+            // reachable from them, which is closed under the directed bars.
+            let mut circuit: Vec<usize> = Vec::new();
+            let mut stack = vec![u, v];
+            listed[u] = i as u32;
+            listed[v] = i as u32;
+            while let Some(x) = stack.pop() {
+                for &(y, bar) in &game.out[x] {
+                    let y = y as usize;
+                    circuit.push(bar as usize);
+                    if listed[y] != i as u32 {
+                        listed[y] = i as u32;
+                        stack.push(y);
+                    }
+                }
+            }
+            circuit.sort_unstable();
+            circuits.push(Some(circuit));
+        }
+    }
+    let components = components(&mut game, n, bars);
+    PebbleReport { rank, circuits, components }
+}
+
+/// The maximal rigid components (see the module documentation).
+fn components(game: &mut Game, n: usize, bars: &[(usize, usize)]) -> Vec<Vec<usize>> {
+    let mut adjacency = vec![Vec::new(); n];
+    for &(u, v) in bars {
+        if u < n && v < n && u != v {
+            adjacency[u].push(v);
+            adjacency[v].push(u);
+        }
+    }
+    // The components each vertex is in (a vertex can be in several: a hinge).
+    let mut member: Vec<Vec<u32>> = vec![Vec::new(); n];
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    // The last component each vertex was decided for (rigid with its bar's ends or not).
+    let mut mark: Vec<u32> = vec![u32::MAX; n];
+    for &(u, v) in bars {
+        if u >= n || v >= n || u == v || member[u].iter().any(|c| member[v].contains(c)) {
+            continue;
+        }
+        let ok = game.gather(u, v, 3);
+        debug_assert!(ok, "three pebbles can always be gathered on two vertices");
+        let id = out.len() as u32;
+        let mut comp = vec![u, v];
+        mark[u] = id;
+        mark[v] = id;
+        // A rigid component is connected through its own vertices: walk from the ends over
+        // the bars, deciding each neighbour of a rigid vertex. A vertex is rigid with u and v
+        // when no pebble can be fetched to it with their three pebbles kept (Lee–Streinu);
+        // everything a failed search reached is rigid too.
+        let mut queue = vec![u, v];
+        while let Some(x) = queue.pop() {
+            for k in 0..adjacency[x].len() {
+                let y = adjacency[x][k];
+                if mark[y] == id {
+                    continue;
+                }
+                let rigid = game.pebbles[y] == 0 && !game.fetch(y, &[u, v]);
+                if !rigid {
+                    mark[y] = id;
+                    continue;
+                }
+                for t in 0..game.trail.len() {
+                    let z = game.trail[t] as usize;
+                    if mark[z] != id {
+                        mark[z] = id;
+                        comp.push(z);
+                        queue.push(z);
+                    }
+                }
+            }
+        }
+        comp.sort_unstable();
+        for &x in &comp {
+            member[x].push(id);
+        }
+        out.push(comp);
+    }
+    for (x, m) in member.iter().enumerate() {
+        if m.is_empty() {
+            out.push(vec![x]);
+        }
+    }
+    out.sort();
+    out
+}
