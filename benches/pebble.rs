@@ -23,6 +23,7 @@ fn graph(n: usize) -> Vec<(usize, usize)> {
     edges
 }
 
+#[allow(clippy::print_stdout)]
 fn bench(c: &mut Criterion) {
     if std::env::var_os("GCS_BENCH_PROBE").is_some() {
         println!("| points | bars | rank | redundant | components | pebble game |");

@@ -353,20 +353,18 @@ fn pebble_outcome(
     {
         return Ok(None);
     }
-    // Trivial motions, `rank(T) − rank(J·T)` at the witness, as the witness path has them
-    // (T has three columns: cheap).
-    let (trivial, proof) = match backend {
-        Backend::Exact => {
-            let jacobian: Jacobian<Rat> = witness.jacobian(system, layout)?;
-            let generators = motions::generators::<Rat>(system, layout, &witness.coords_in()?)?;
-            (exact_trivial_motions(&jacobian, &generators)?, Some(Proof::PebbleGame))
-        }
-        _ => {
-            let jacobian: Jacobian<ModP> = witness.jacobian(system, layout)?;
-            let generators = motions::generators::<ModP>(system, layout, &witness.coords_in()?)?;
-            (trivial_motions(&jacobian, &generators, EchelonOptions::default()), None)
-        }
+    // Trivial motions, `rank(T) − rank(J·T)` at the witness: a distance is invariant under
+    // every motion of the plane, so `J·T = 0`, and `T` (two translations and a rotation) has
+    // rank 3 unless all the points are at one place, where the rotation moves them as a
+    // translation does (rank 2; 0 without points).
+    let coords = &witness.coords;
+    let first = system.entity_indices().next().map(|e| &coords[layout.columns(e)]);
+    let trivial = match first {
+        None => 0,
+        Some(p) if system.entity_indices().all(|e| &coords[layout.columns(e)] == p) => 2,
+        Some(_) => 3,
     };
+    let proof = (backend == Backend::Exact).then_some(Proof::PebbleGame);
     let n = pebbles.bars.len();
     Ok(Some((
         Outcome {
@@ -898,8 +896,15 @@ fn analyze_in_field(
         }
         .or_else(|| global::model(system, layout, &witness, backend, seed));
         let decided = |k: usize| {
-            let inside = in_circuit.as_ref()?;
             let c = &clusters[k];
+            // The whole system as one cluster: its answer is the model's.
+            if c.entities.len() == system.entities().len()
+                && c.constraints.len() == system.constraints().len()
+                && whole.is_some()
+            {
+                return whole.clone();
+            }
+            let inside = in_circuit.as_ref()?;
             let coloops = c.constraints.iter().filter(|b| !inside[b.index()]).count();
             // A cluster is rigid by definition.
             global::not_redundantly_rigid(c.entities.len(), c.constraints.len(), true, coloops)
@@ -911,7 +916,6 @@ fn analyze_in_field(
             backend,
             seed,
             &clusters,
-            whole.as_ref(),
             decided,
         );
         (whole, each)

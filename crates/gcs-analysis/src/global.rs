@@ -464,7 +464,9 @@ pub(crate) fn model(
     Some(stress_test(&f, layout, witness, backend, seed))
 }
 
-/// The test of every cluster that is a distance framework, in the order of `clusters`.
+/// The test of every cluster that is a distance framework, in the order of `clusters`, but
+/// for those `decided` answers already (by index: the whole system as one cluster, whose answer
+/// is the model's; Jackson and Jordán's condition).
 pub(crate) fn clusters(
     system: &System,
     layout: &Layout,
@@ -472,20 +474,12 @@ pub(crate) fn clusters(
     backend: Backend,
     seed: u64,
     clusters: &[gcs_decompose::Cluster],
-    whole: Option<&GlobalRigidity>,
     decided: impl Fn(usize) -> Option<GlobalRigidity>,
 ) -> Vec<Option<GlobalRigidity>> {
     clusters
         .iter()
         .enumerate()
         .map(|(k, c)| {
-            // The whole system as one cluster: its answer is the model's.
-            if let Some(w) = whole
-                && c.entities.len() == system.entities().len()
-                && c.constraints.len() == system.constraints().len()
-            {
-                return Some(w.clone());
-            }
             if let Some(answer) = decided(k) {
                 return Some(answer);
             }

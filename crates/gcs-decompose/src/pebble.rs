@@ -77,10 +77,17 @@ impl PebbleReport {
 #[derive(Clone, Debug)]
 pub struct Game {
     pebbles: Vec<u8>,
-    /// Out-neighbours: `out[u]` holds `(v, bar)` for each accepted bar covered by `u`.
+    /// Out-neighbours: `out[u]` holds `(v, bar)` for each accepted bar covered by `u` (at
+    /// most two: a vertex's free pebbles and out-bars make two).
     out: Vec<Vec<(u32, u32)>>,
+    /// Accepted bars at each vertex, either direction.
+    degree: Vec<u32>,
     /// Search marks (by generation, so that nothing is cleared between searches).
     seen: Vec<u32>,
+    /// Vertices every search skips while `fence[x] == fence_id` (the vertices found rigid
+    /// with a component's bar: no pebble is reachable from them, so a search need not enter).
+    fence: Vec<u32>,
+    fence_id: u32,
     generation: u32,
     /// The search's predecessor of each vertex: `(vertex, index in its out list)`.
     parent: Vec<(u32, u32)>,
@@ -97,7 +104,10 @@ impl Game {
         Game {
             pebbles: vec![2; n],
             out: vec![Vec::new(); n],
+            degree: vec![0; n],
             seen: vec![0; n],
+            fence: vec![0; n],
+            fence_id: u32::MAX,
             generation: 0,
             parent: vec![(0, 0); n],
             cursor: vec![0; n],
@@ -109,12 +119,40 @@ impl Game {
     /// Accepts the bar `uv` (numbered `bar`) if it is independent of the accepted ones: four
     /// pebbles gathered on its ends. Returns whether it was.
     pub fn add(&mut self, u: usize, v: usize, bar: usize) -> bool {
-        if u == v || !self.gather(u, v, 4) {
+        if u == v {
             return false;
         }
-        self.pebbles[u] -= 1;
-        self.out[u].push((v as u32, bar as u32));
+        // A bar to a vertex with at most one accepted bar, not already joined to the other end,
+        // is independent without a search: a set of vertices holding that end spans at most
+        // two more bars than it does without it, one vertex fewer (`2|X| − 3` stays met), and
+        // the pair itself one bar. That end has a free pebble (at most one out-bar) to cover
+        // it. (Henneberg's first move: the common case of a sketch built point by point.)
+        for (x, y) in [(v, u), (u, v)] {
+            if self.degree[x] <= 1 && !self.joined(x, y) {
+                self.cover(x, y, bar);
+                return true;
+            }
+        }
+        if !self.gather(u, v, 4) {
+            return false;
+        }
+        self.cover(u, v, bar);
         true
+    }
+
+    /// Covers the bar `xy` with a pebble of `x`.
+    fn cover(&mut self, x: usize, y: usize, bar: usize) {
+        debug_assert!(self.pebbles[x] > 0);
+        self.pebbles[x] -= 1;
+        self.out[x].push((y as u32, bar as u32));
+        self.degree[x] += 1;
+        self.degree[y] += 1;
+    }
+
+    /// Whether an accepted bar joins `x` and `y` (out-lists have at most two entries).
+    fn joined(&self, x: usize, y: usize) -> bool {
+        self.out[x].iter().any(|&(t, _)| t as usize == y)
+            || self.out[y].iter().any(|&(t, _)| t as usize == x)
     }
 
     /// Removes the accepted bar `uv` (in whichever direction it has); its pebble is freed.
@@ -123,6 +161,8 @@ impl Game {
             if let Some(k) = self.out[a].iter().position(|&(t, _)| t as usize == b) {
                 self.out[a].swap_remove(k);
                 self.pebbles[a] += 1;
+                self.degree[a] -= 1;
+                self.degree[b] -= 1;
                 return;
             }
         }
@@ -164,7 +204,7 @@ impl Game {
             while let Some(&(y, _)) = self.out[x].get(self.cursor[x] as usize) {
                 let k = self.cursor[x];
                 self.cursor[x] += 1;
-                if self.seen[y as usize] != g {
+                if self.seen[y as usize] != g && self.fence[y as usize] != self.fence_id {
                     next = Some((y as usize, k));
                     break;
                 }
@@ -291,20 +331,29 @@ fn components(game: &mut Game, n: usize, bars: &[(usize, usize)]) -> Vec<Vec<usi
         if u >= n || v >= n || u == v || member[u].iter().any(|c| member[v].contains(c)) {
             continue;
         }
+        // (No fence while gathering: the last component's rigid vertices are not this one's.)
+        game.fence_id = u32::MAX;
         let ok = game.gather(u, v, 3);
         debug_assert!(ok, "three pebbles can always be gathered on two vertices");
         let id = out.len() as u32;
         let mut comp = vec![u, v];
         mark[u] = id;
         mark[v] = id;
+        // The rigid vertices found so far fence every later search of this component: nothing
+        // reachable from them holds a pebble (a pebble moved to a free vertex travels along a
+        // path that no rigid vertex reaches, or that vertex would have reached the pebble), so
+        // each vertex is explored once per component.
+        // (Fence ids start at 1: the fences start at 0.)
+        game.fence_id = id + 1;
+        game.fence[u] = id + 1;
+        game.fence[v] = id + 1;
         // A rigid component is connected through its own vertices: walk from the ends over
         // the bars, deciding each neighbour of a rigid vertex. A vertex is rigid with u and v
         // when no pebble can be fetched to it with their three pebbles kept (Lee–Streinu);
         // everything a failed search reached is rigid too.
         let mut queue = vec![u, v];
         while let Some(x) = queue.pop() {
-            for k in 0..adjacency[x].len() {
-                let y = adjacency[x][k];
+            for &y in &adjacency[x] {
                 if mark[y] == id {
                     continue;
                 }
@@ -317,6 +366,7 @@ fn components(game: &mut Game, n: usize, bars: &[(usize, usize)]) -> Vec<Vec<usi
                     let z = game.trail[t] as usize;
                     if mark[z] != id {
                         mark[z] = id;
+                        game.fence[z] = id + 1;
                         comp.push(z);
                         queue.push(z);
                     }
@@ -329,6 +379,7 @@ fn components(game: &mut Game, n: usize, bars: &[(usize, usize)]) -> Vec<Vec<usi
         }
         out.push(comp);
     }
+    game.fence_id = u32::MAX;
     for (x, m) in member.iter().enumerate() {
         if m.is_empty() {
             out.push(vec![x]);
