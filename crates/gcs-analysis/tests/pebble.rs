@@ -119,22 +119,13 @@ fn the_pebble_game_agrees_with_the_witness_on_random_frameworks() {
 }
 
 #[test]
-fn the_pebble_game_agrees_on_henneberg_frameworks_with_extra_bars() {
+fn the_pebble_game_agrees_on_henneberg_frameworks_with_bars_moved() {
     for seed in 0..20u64 {
         let mut rng = SplitMix64::new(seed);
         let n = 20 + rng.below(40) as usize;
-        // Henneberg type I moves: each new vertex joined to two earlier ones (Laman), then a
-        // few random bars and a few removed, so that there are circuits and flexible parts.
-        let mut bars = vec![(0, 1)];
-        for v in 2..n {
-            let a = rng.below(v as u64) as usize;
-            let mut b = rng.below(v as u64) as usize;
-            while b == a {
-                b = rng.below(v as u64) as usize;
-            }
-            bars.push((a, v));
-            bars.push((b, v));
-        }
+        // Henneberg moves (half of type II: Laman), then a few bars removed and a few random
+        // ones added, so that there are circuits and flexible parts.
+        let mut bars = gcs_model::generate::laman_edges(n, 0.5, &mut rng);
         for _ in 0..3 {
             let k = rng.below(bars.len() as u64) as usize;
             bars.remove(k);
