@@ -45,7 +45,10 @@ fn bench(c: &mut Criterion) {
         return;
     }
     let mut group = c.benchmark_group("pebble_game");
-    group.sampling_mode(SamplingMode::Flat).sample_size(10).measurement_time(Duration::from_secs(5));
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(5));
     for n in [1_000, 10_000, 100_000] {
         let edges = graph(n);
         group.bench_with_input(BenchmarkId::from_parameter(n), &edges, |b, e| {

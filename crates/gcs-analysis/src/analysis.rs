@@ -599,7 +599,8 @@ pub(crate) fn rank_at(
             // Assembled in `Rat` (machine words while the numbers are small: a sketch's
             // decimal coordinates), handed to the certificate as `BigRational`s.
             let small: Jacobian<Rat> = witness.jacobian(system, layout)?;
-            let small_generators = motions::generators::<Rat>(system, layout, &witness.coords_in()?)?;
+            let small_generators =
+                motions::generators::<Rat>(system, layout, &witness.coords_in()?)?;
             // Trivial motions, exactly: T and J·T have at most six columns.
             let trivial = exact_trivial_motions(&small, &small_generators)?;
             let big = |v: &Vec<Rat>| v.iter().map(BigRational::from).collect::<Vec<_>>();
@@ -909,15 +910,7 @@ fn analyze_in_field(
             // A cluster is rigid by definition.
             global::not_redundantly_rigid(c.entities.len(), c.constraints.len(), true, coloops)
         };
-        let each = global::clusters(
-            system,
-            layout,
-            &witness,
-            backend,
-            seed,
-            &clusters,
-            decided,
-        );
+        let each = global::clusters(system, layout, &witness, backend, seed, &clusters, decided);
         (whole, each)
     } else {
         (None, vec![None; clusters.len()])

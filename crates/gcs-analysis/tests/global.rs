@@ -95,14 +95,14 @@ fn known_answers_in_every_backend() {
     for (name, dim, edges, rigid, yes) in cases() {
         for seed in [1, 2] {
             let s = model(name, dim, &edges, seed);
-            for (backend, pebble_game) in
-                BACKENDS.into_iter().flat_map(|b| [(b, false), (b, true)])
+            for (backend, pebble_game) in BACKENDS.into_iter().flat_map(|b| [(b, false), (b, true)])
             {
-                let options = AnalysisOptions { backend, pebble_game, ..AnalysisOptions::default() };
-                let a = analyze(&s, &options)
-                    .unwrap_or_else(|e| panic!("{name} {backend:?}: {e}"));
+                let options =
+                    AnalysisOptions { backend, pebble_game, ..AnalysisOptions::default() };
+                let a = analyze(&s, &options).unwrap_or_else(|e| panic!("{name} {backend:?}: {e}"));
                 let g = a.global_rigidity.as_ref().unwrap_or_else(|| panic!("{name}: absent"));
-                let at = format!("{name}, {}, seed {seed}, pebble game {pebble_game}", backend.name());
+                let at =
+                    format!("{name}, {}, seed {seed}, pebble game {pebble_game}", backend.name());
                 assert_eq!(g.globally_rigid, yes, "{at}: {g:?}");
                 assert_eq!(g.rigid, rigid, "{at}: {g:?}");
                 assert_eq!(
@@ -112,9 +112,8 @@ fn known_answers_in_every_backend() {
                 );
                 // The pebble game (2D, exact backends) decides the *no* of a framework that is
                 // not redundantly rigid by Jackson and Jordán's condition, with certainty.
-                let combinatorial = a.rank_method == gcs_analysis::RankMethod::PebbleGame
-                    && !yes
-                    && g.points >= 4;
+                let combinatorial =
+                    a.rank_method == gcs_analysis::RankMethod::PebbleGame && !yes && g.points >= 4;
                 match backend {
                     _ if combinatorial => {
                         assert_eq!(g.arithmetic, Arithmetic::Combinatorial, "{at}");

@@ -6,9 +6,9 @@
 //! field, but for the fields that say how it was decided.
 
 use gcs_analysis::{AnalysisOptions, Arithmetic, Backend, RankMethod, analyze};
+use gcs_decompose::pebble_game;
 use gcs_model::System;
 use gcs_model::rng::SplitMix64;
-use gcs_decompose::pebble_game;
 
 /// The RON of `n` points at random integer coordinates joined by `bars` (distances with the
 /// drawn values left out: the analysis reads them off the witness).
@@ -54,12 +54,8 @@ fn agree(n: usize, bars: &[(usize, usize)], seed: u64) -> (usize, usize) {
         .iter()
         .map(|r| (r.constraint.index(), r.spanning_group.iter().map(|c| c.index()).collect()))
         .collect();
-    let pebbles: Vec<(usize, Vec<usize>)> = game
-        .circuits
-        .iter()
-        .enumerate()
-        .filter_map(|(i, c)| c.clone().map(|c| (i, c)))
-        .collect();
+    let pebbles: Vec<(usize, Vec<usize>)> =
+        game.circuits.iter().enumerate().filter_map(|(i, c)| c.clone().map(|c| (i, c))).collect();
     assert_eq!(pebbles, witness, "redundant bars and spanning groups, {what}");
     let mut clusters: Vec<Vec<usize>> =
         analysis.clusters.iter().map(|c| c.entities.iter().map(|e| e.index()).collect()).collect();

@@ -6,11 +6,11 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
 use crate::Field;
+use crate::Rat;
 use crate::echelon::{EchelonOptions, Insertion, RowAnalysis, analyse_rows};
 use crate::error::RankError;
 use crate::modp::{ModP, ModQ, bigint_mod, inv_mod, nth_lifting_prime, with_modulus};
 use crate::sparse::{SparseRow, linear_combination};
-use crate::Rat;
 
 /// The second prime of multi-modular lifting, `2^64 − 59`.
 pub const SECOND_PRIME: u64 = 18_446_744_073_709_551_557;

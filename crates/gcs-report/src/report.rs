@@ -3,8 +3,7 @@
 //! ([`text`]).
 
 use gcs_analysis::{
-    Analysis, Arithmetic, Backend, GlobalRigidity, Position, RankMethod, Redundancy,
-    SketchAnalysis,
+    Analysis, Arithmetic, Backend, GlobalRigidity, Position, RankMethod, Redundancy, SketchAnalysis,
 };
 use gcs_jacobian::WitnessSource;
 use gcs_model::{ConstraintIdx, System};

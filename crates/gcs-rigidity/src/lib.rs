@@ -80,9 +80,9 @@ pub mod witness_dor;
 pub use dm::{DmDecomposition, DmPart, dm_decomposition};
 pub use dor::{DorOracle, RuleDor};
 pub use error::RigidityError;
+pub use gcs_decompose::{PebbleReport, pebble_game};
 pub use global::{jackson_jordan, k_connected, laman_rigid, redundantly_rigid};
 pub use network::{Network, Object, Share, Subsystem};
-pub use gcs_decompose::{PebbleReport, pebble_game};
 pub use report::{StructuralReport, structural_analysis};
 pub use rigidity::{
     RigidityAnalysis, Verdict, dense, dense_analysis, dense_analysis_in, dense_in, minimal_dense,
