@@ -202,14 +202,21 @@ fn describe(system: &System, u: &Unsatisfied) -> Rejection {
 }
 
 /// The rank modulo the 61-bit prime of the Jacobian at `coords` (0 when a coordinate has no
-/// image modulo the prime); `rays` as in [`references`].
-fn rank_modp(system: &System, layout: &Layout, coords: &[Rat], plan: &Plan, rays: bool) -> usize {
+/// image modulo the prime) and its number of rows; `rays` as in [`references`].
+fn rank_modp(
+    system: &System,
+    layout: &Layout,
+    coords: &[Rat],
+    plan: &Plan,
+    rays: bool,
+) -> (usize, usize) {
     let Ok(x) = coords.iter().map(ModP::from_rat).collect::<Result<Vec<ModP>, _>>() else {
-        return 0;
+        return (0, usize::MAX);
     };
     let reference = references(system, layout, &x, rays);
     let j = assemble(system, layout, plan, &x, &reference);
-    gcs_rank::echelon_rank(j.ncols, j.rows).0
+    let rows = j.rows.len();
+    (gcs_rank::echelon_rank(j.ncols, j.rows).0, rows)
 }
 
 /// The placement's rationals (a rational placement holds only rationals).
@@ -306,8 +313,11 @@ pub fn find_witness(
     if has_sketch {
         match plan(system, layout, &pref, &sketch)? {
             Ok(p) => {
-                let r = rank_modp(system, layout, &pref, &p, false);
-                if options.generic_rank == Some(r) {
+                let (r, rows) = rank_modp(system, layout, &pref, &p, false);
+                // Every plan keeps DOC rows per constraint, so no configuration has a rank
+                // above `rows`: a sketch whose rows are independent (modulo the prime, hence
+                // over ℚ) is generic, as is one that reaches a generic rank known otherwise.
+                if options.generic_rank == Some(r) || r == rows {
                     // Proven generic: no perturbation can do better.
                     return Ok(Witness {
                         coords: pref.iter().map(Rat::to_big).collect(),
@@ -344,7 +354,7 @@ pub fn find_witness(
             )? {
                 Ok(p) => {
                     tested = true;
-                    let r = rank_modp(system, layout, &rationals(&coords), &p, true);
+                    let (r, _) = rank_modp(system, layout, &rationals(&coords), &p, true);
                     let source = if has_sketch && sketch_rejected.is_none() {
                         WitnessSource::Perturbed
                     } else {
