@@ -622,11 +622,18 @@ pub fn text_with_solution(
         _ => String::new(),
     };
     let tested = if a.witness.genericity_tested { "" } else { ", genericity not tested" };
+    let how = match a.rank_method {
+        // No arithmetic decided the verdict, whatever the backend (which still took the
+        // drawing's rank and global rigidity).
+        RankMethod::PebbleGame => "the (2,3) pebble game of the bar framework (Laman's theorem: \
+                                   proven, no arithmetic)"
+            .to_owned(),
+        RankMethod::Witness => format!("{} arithmetic{proof}{tol}", a.backend.name()),
+    };
     push(
         &mut out,
         format!(
-            "  decided by: {} arithmetic{proof}{tol}; witness: {}{tested}, seed {}",
-            a.backend.name(),
+            "  decided by: {how}; witness: {}{tested}, seed {}",
             a.witness.source.name(),
             a.seed
         ),
