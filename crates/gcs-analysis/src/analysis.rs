@@ -46,7 +46,7 @@ pub enum RankMethod {
     Witness,
     /// The (2,3) pebble game, for 2D frameworks of points and distances between them: by
     /// Laman's theorem the same answer as any generic witness, with certainty and without
-    /// arithmetic ([`gcs_rigidity::pebble_game`]).
+    /// arithmetic ([`gcs_decompose::pebble_game`]).
     PebbleGame,
 }
 
