@@ -154,7 +154,7 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// Also list the other realizations (`solutions`): the core as solved, and each point
-        /// placed by two distances on either side of its two anchors, every combination under
+        /// placed in closed form at each of its candidates, every combination under
         /// which the consistent redundant constraints still hold (mirror images distinct).
         #[arg(long)]
         all: bool,

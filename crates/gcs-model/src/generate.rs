@@ -40,15 +40,30 @@ fn dimension(p: &[BigRational], q: &[BigRational]) -> BigRational {
 /// assert_eq!(s.dof_sum(), s.doc_sum());
 /// ```
 pub fn rectangles(n: usize) -> System {
+    rectangles_drawn(n, 0.0, 0)
+}
+
+/// [`rectangles`] drawn off their dimensions: every corner but the fixed one moved by up to
+/// `jitter` (model units) in each coordinate, written to four decimals — a sketch to solve.
+pub fn rectangles_drawn(n: usize, jitter: f64, seed: u64) -> System {
     let mut b = SystemBuilder::new(format!("rectangles-{n}"), Dim::Two);
     let columns = (n as f64).sqrt().ceil().max(1.0) as i64;
+    let mut rng = SplitMix64::new(seed);
+    let mut drawn = |v: i64, fixed: bool| {
+        if fixed || jitter == 0.0 {
+            return int(v);
+        }
+        let moved = v as f64 + jitter * (2.0 * rng.unit_f64() - 1.0);
+        BigRational::new(((moved * 10_000.0).round() as i64).into(), 10_000.into())
+    };
     for k in 0..n as i64 {
         let (ox, oy) = ((k % columns) * 20, (k / columns) * 20);
         let (w, h) = (3 + k % 7, 2 + k % 5);
         let corners = [[ox, oy], [ox + w, oy], [ox + w, oy + h], [ox, oy + h]];
         let names = ["a", "b", "c", "d"].map(|s| format!("r{k}{s}"));
-        for (name, c) in names.iter().zip(&corners) {
-            ok(b.point(name, Some(vec![int(c[0]), int(c[1])])));
+        for (i, (name, c)) in names.iter().zip(&corners).enumerate() {
+            let at = vec![drawn(c[0], i == 0), drawn(c[1], i == 0)];
+            ok(b.point(name, Some(at)));
         }
         let sides = ["bottom", "right", "top", "left"].map(|s| format!("r{k}_{s}"));
         for i in 0..4 {

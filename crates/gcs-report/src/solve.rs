@@ -303,7 +303,7 @@ impl SolveReport {
         let closed = self.plan.iter().filter(|p| p.method == "closed-form").count();
         if closed > 0 {
             out.push_str(&format!(
-                "  plan: {} step{}, {closed} of them a point by two distances in closed form, on the drawing's side{}\n",
+                "  plan: {} step{}, {closed} of them a point placed in closed form, on the drawing's side{}\n",
                 self.plan.len(),
                 if self.plan.len() == 1 { "" } else { "s" },
                 match self.plan.iter().filter(|p| p.fixed).count() {
@@ -315,7 +315,7 @@ impl SolveReport {
         if let Some(solutions) = &self.solutions {
             let fixed = self.plan.iter().filter(|p| p.fixed).count();
             out.push_str(&format!(
-                "  realizations: {}{} (the core as solved, each point by two distances on either side{}; mirror images distinct)\n",
+                "  realizations: {}{} (the core as solved, each closed-form point at each of its candidates{}; mirror images distinct)\n",
                 solutions.len(),
                 if self.truncated == Some(true) { ", more not listed (--max-solutions)" } else { "" },
                 match fixed {

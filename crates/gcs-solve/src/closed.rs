@@ -70,6 +70,63 @@ pub fn circle_circle(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, tolerance: f64)
     Intersection::Two([[foot[0] - h * uy, foot[1] + h * ux], [foot[0] + h * uy, foot[1] - h * ux]])
 }
 
+/// The intersections of the circle of centre `a`, radius `r` with the line `g·p = h` (a point
+/// at a distance from a point and on a line): candidate 0 is the one ahead along the line's
+/// direction `(−g₁, g₀)` from the foot of the perpendicular from `a`, candidate 1 behind.
+/// `tolerance` as for [`circle_circle`], relative to `r²`. A line without a direction gives
+/// `None`.
+///
+/// # Example
+/// ```
+/// use gcs_solve::closed::{Intersection, circle_line};
+/// // The circle of radius 5 about the origin and the horizontal line y = 3.
+/// let Intersection::Two([ahead, behind]) = circle_line([0.0, 0.0], 5.0, [0.0, 1.0], 3.0, 1e-12)
+/// else { panic!() };
+/// assert!((ahead[0] + 4.0).abs() < 1e-12 && (ahead[1] - 3.0).abs() < 1e-12);
+/// assert!((behind[0] - 4.0).abs() < 1e-12);
+/// ```
+pub fn circle_line(a: [f64; 2], r: f64, g: [f64; 2], h: f64, tolerance: f64) -> Intersection {
+    let g2 = g[0] * g[0] + g[1] * g[1];
+    if g2.is_nan() || g2 <= 0.0 || !r.is_finite() || !h.is_finite() {
+        return Intersection::None;
+    }
+    let t = (h - g[0] * a[0] - g[1] * a[1]) / g2;
+    let foot = [a[0] + t * g[0], a[1] + t * g[1]];
+    let h2 = r * r - t * t * g2;
+    if h2.abs() <= tolerance * r * r {
+        return Intersection::Tangent(foot);
+    }
+    if h2 < 0.0 {
+        return Intersection::None;
+    }
+    let s = (h2 / g2).sqrt();
+    let u = [-g[1] * s, g[0] * s];
+    Intersection::Two([[foot[0] + u[0], foot[1] + u[1]], [foot[0] - u[0], foot[1] - u[1]]])
+}
+
+/// The point of the lines `g₁·p = h₁` and `g₂·p = h₂`; `None` when they are parallel within
+/// `tolerance` (the sine of their angle).
+pub fn line_line(g1: [f64; 2], h1: f64, g2: [f64; 2], h2: f64, tolerance: f64) -> Option<[f64; 2]> {
+    let det = g1[0] * g2[1] - g1[1] * g2[0];
+    let n = (g1[0].hypot(g1[1])) * (g2[0].hypot(g2[1]));
+    if det.is_nan() || det.abs() <= tolerance * n {
+        return None;
+    }
+    let p = [(h1 * g2[1] - h2 * g1[1]) / det, (g1[0] * h2 - g2[0] * h1) / det];
+    p.iter().all(|v| v.is_finite()).then_some(p)
+}
+
+/// The point on the line `g·p = h` nearest to the circle of centre `a` when they do not meet:
+/// the foot of the perpendicular from `a`.
+pub fn foot(a: [f64; 2], g: [f64; 2], h: f64) -> [f64; 2] {
+    let g2 = g[0] * g[0] + g[1] * g[1];
+    if g2.is_nan() || g2 <= 0.0 {
+        return a;
+    }
+    let t = (h - g[0] * a[0] - g[1] * a[1]) / g2;
+    [a[0] + t * g[0], a[1] + t * g[1]]
+}
+
 /// The point nearest to satisfying both distances when the circles do not meet: on the line
 /// through the centres, halfway across the gap between the circles (the least-squares point
 /// of the two residuals `|p − a| − ra`, `|p − b| − rb`).
@@ -127,6 +184,33 @@ mod tests {
         };
         assert!((p[0] - 5.0).abs() < 1e-12 && p[1].abs() < 1e-12);
         assert_eq!(circle_circle([0.0, 0.0], 2.0, [5.0, 0.0], 3.0, 1e-12).candidates().len(), 1);
+    }
+
+    #[test]
+    fn circle_and_line() {
+        // The line x + y = 1 and the unit circle about the origin: (1, 0) and (0, 1).
+        let Intersection::Two([ahead, behind]) =
+            circle_line([0.0, 0.0], 1.0, [1.0, 1.0], 1.0, 1e-12)
+        else {
+            panic!("two points")
+        };
+        // Ahead along (−1, 1): (0, 1).
+        assert!(dist(ahead, [0.0, 1.0]) < 1e-12 && dist(behind, [1.0, 0.0]) < 1e-12);
+        // Tangent, and apart.
+        assert_eq!(
+            circle_line([0.0, 0.0], 2.0, [0.0, 1.0], 2.0, 1e-12),
+            Intersection::Tangent([0.0, 2.0])
+        );
+        assert_eq!(circle_line([0.0, 0.0], 2.0, [0.0, 1.0], 3.0, 1e-12), Intersection::None);
+        assert_eq!(foot([0.0, 0.0], [0.0, 2.0], 6.0), [0.0, 3.0]);
+        assert_eq!(circle_line([0.0, 0.0], 2.0, [0.0, 0.0], 3.0, 1e-12), Intersection::None);
+    }
+
+    #[test]
+    fn two_lines() {
+        let p = line_line([1.0, 0.0], 2.0, [1.0, 1.0], 5.0, 1e-12).expect("a point");
+        assert!(dist(p, [2.0, 3.0]) < 1e-12);
+        assert_eq!(line_line([1.0, 0.0], 2.0, [2.0, 0.0], 5.0, 1e-12), None, "parallel");
     }
 
     #[test]

@@ -4,14 +4,15 @@
 //! all from a numerical failure.
 //!
 //! The solve follows a constructive plan ([`plan`], after the ESM paper §3–4): the points of
-//! a plane sketch placed by two distances from points placed before them (Henneberg type I
-//! steps) are peeled off; what remains, the core, is solved by damped Gauss–Newton
+//! a plane sketch placed by two conditions on entities placed before them (two distances — a
+//! Henneberg type I step —, a distance and a line, two lines, a fix: [`plan::Locus`]) are
+//! peeled off; what remains, the core, is solved by damped Gauss–Newton
 //! (Levenberg–Marquardt, [`gcs_rank::levenberg_marquardt`], sparse above a few hundred
 //! unknowns) from the drawing, on the residuals of [`gcs_jacobian::Equations`] — the same
 //! equations the analysis ranks, with the user's values for the dimensions; then the peeled
-//! points are placed in closed form ([`closed`]: circle–circle intersection, two candidates),
-//! each choosing the candidate on the drawing's side of its two anchors (the chirality of the
-//! sketch), ties (a drawing with the three points in line) by least displacement. Small damped
+//! points are placed in closed form ([`closed`]: circle–circle and circle–line intersections,
+//! two candidates; line–line, one), each choosing the candidate on the drawing's side (the
+//! chirality of the sketch), ties (a drawing that shows no side) by least displacement. Small damped
 //! steps from the drawing keep the core's shape: an under-constrained sketch moves as little
 //! as it must, and the side of a tangency or the orientation of a triangle is the drawing's.
 //!
@@ -25,7 +26,7 @@
 //! rest is solved without it.
 //!
 //! Not built yet: the full DR-plan recursion (a cluster's children as rigid bodies), closed
-//! forms other than a point by two distances, and backtracking over the choices.
+//! forms for lines and circles, and backtracking over the core's realizations.
 //!
 //! A library: it never panics on input and never prints.
 
@@ -51,7 +52,7 @@ pub struct SolveOptions {
     pub max_iterations: usize,
     /// Larger systems are not attempted.
     pub max_unknowns: usize,
-    /// Whether to place the points given by two distances in closed form ([`plan`]); without
+    /// Whether to place the points given by two conditions in closed form ([`plan`]); without
     /// it, the whole system is solved numerically.
     pub constructive: bool,
     /// `Some(n)`: also enumerate the realizations the closed-form steps allow, at most `n`
@@ -506,7 +507,8 @@ fn value(system: &System, c: ConstraintIdx) -> f64 {
 /// point, its anchors and the constraints among the three (those that fix the anchors'
 /// distance included).
 fn triangle(system: &System, solved: &[ConstraintIdx], step: &plan::Step) -> NoSolution {
-    let mut entities = vec![step.anchors[0], step.anchors[1], step.point];
+    let mut entities = step.anchors.clone();
+    entities.push(step.point);
     entities.sort();
     let constraints = solved
         .iter()
@@ -519,29 +521,109 @@ fn triangle(system: &System, solved: &[ConstraintIdx], step: &plan::Step) -> NoS
     NoSolution { entities, constraints }
 }
 
+/// The loci of a closed-form step's point at a configuration `y` (its anchors placed there):
+/// the circles (centre, radius) and the lines `g·p = h` its constraints confine it to.
+struct Loci {
+    circles: Vec<([f64; 2], f64)>,
+    lines: Vec<([f64; 2], f64)>,
+}
+
+impl Loci {
+    fn at(
+        step: &plan::Step,
+        system: &System,
+        equations: &Equations<'_>,
+        layout: &Layout,
+        y: &[f64],
+    ) -> Self {
+        let col = layout.columns(step.point).start;
+        let p = [y[col], y[col + 1]];
+        let (mut circles, mut lines) = (Vec::new(), Vec::new());
+        for &(c, locus) in &step.constraints {
+            match locus {
+                plan::Locus::Circle => {
+                    let Some([u, v]) = plan::distance_points(system, c) else { continue };
+                    let other = if u == step.point { v } else { u };
+                    circles.push((at(layout, y, other), value(system, c)));
+                }
+                plan::Locus::Affine { .. } => {
+                    // The residual is affine in the point: its linearisation anywhere is it.
+                    let Some(res) = equations.residual(c, y) else { continue };
+                    for (row, v) in res.rows.iter().zip(&res.values) {
+                        let mut g = [0.0; 2];
+                        for &(k, a) in row.entries() {
+                            if k == col || k == col + 1 {
+                                g[k - col] += a;
+                            }
+                        }
+                        lines.push((g, g[0] * p[0] + g[1] * p[1] - v));
+                    }
+                }
+            }
+        }
+        Loci { circles, lines }
+    }
+
+    /// The real candidates, in the order of [`closed`], and where the point goes when there is
+    /// none (the least-squares point of the two conditions, or where it is).
+    fn candidates(&self, now: [f64; 2]) -> (Vec<[f64; 2]>, [f64; 2]) {
+        match (self.circles.as_slice(), self.lines.as_slice()) {
+            ([(a, ra), (b, rb)], []) => (
+                closed::circle_circle(*a, *ra, *b, *rb, 1e-12).candidates(),
+                closed::nearest_to_both(*a, *ra, *b, *rb),
+            ),
+            ([(a, r)], [(g, h)]) => {
+                (closed::circle_line(*a, *r, *g, *h, 1e-12).candidates(), closed::foot(*a, *g, *h))
+            }
+            ([], [(g1, h1), (g2, h2)]) => {
+                let p = closed::line_line(*g1, *h1, *g2, *h2, 1e-12);
+                (p.into_iter().collect(), p.unwrap_or(now))
+            }
+            _ => (Vec::new(), now),
+        }
+    }
+
+    /// The chirality of `p` with respect to the loci, positive on candidate 0's side, with the
+    /// product of lengths that makes it a sine; `None` for a step with one candidate.
+    fn side(&self, p: [f64; 2]) -> Option<(f64, f64)> {
+        let norm = |u: [f64; 2], v: [f64; 2]| (u[0] - v[0]).hypot(u[1] - v[1]);
+        match (self.circles.as_slice(), self.lines.as_slice()) {
+            ([(a, _), (b, _)], []) => {
+                Some((closed::orientation(*a, *b, p), norm(*a, *b) * norm(*a, p)))
+            }
+            ([(a, _)], [(g, _)]) => {
+                // Along the line's direction (−g₁, g₀), from the circle's centre.
+                let along = -g[1] * (p[0] - a[0]) + g[0] * (p[1] - a[1]);
+                Some((along, g[0].hypot(g[1]) * norm(*a, p)))
+            }
+            _ => None,
+        }
+    }
+}
+
 /// Places the point of a closed-form step: the real candidates, the one on the drawing's side
 /// of the anchors (ties by least displacement from the drawing); `None` when there is none.
+#[allow(clippy::too_many_arguments)]
 fn place(
     step: &plan::Step,
     layout: &Layout,
     system: &System,
+    equations: &Equations<'_>,
     x0: &[f64],
     x: &[f64],
     flip: bool,
     forced: Option<usize>,
 ) -> Placed {
-    let [a, b] = step.anchors.map(|e| at(layout, x, e));
-    let [ra, rb] = step.constraints.map(|c| value(system, c));
-    let candidates = closed::circle_circle(a, ra, b, rb, 1e-12).candidates();
+    let now = Loci::at(step, system, equations, layout, x);
+    let (candidates, fallback) = now.candidates(at(layout, x, step.point));
     let drawn = at(layout, x0, step.point);
-    let [a0, b0] = step.anchors.map(|e| at(layout, x0, e));
-    let side = closed::orientation(a0, b0, drawn);
+    let chirality = Loci::at(step, system, equations, layout, x0).side(drawn);
     let norm = |u: [f64; 2], v: [f64; 2]| ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2)).sqrt();
-    let flat = side.abs() <= 1e-9 * norm(a0, b0) * norm(a0, drawn);
+    let flat = chirality.is_none_or(|(side, n)| !(side.abs() > 1e-9 * n));
     let chosen = match candidates.len() {
         0 => None,
         1 => Some(0),
-        _ if !flat => Some(if side > 0.0 { 0 } else { 1 }),
+        _ if !flat => Some(if chirality.is_some_and(|(side, _)| side > 0.0) { 0 } else { 1 }),
         _ => Some(if norm(candidates[0], drawn) <= norm(candidates[1], drawn) { 0 } else { 1 }),
     };
     // Backtracking takes the other candidate; a fixed choice stands (none when the step has
@@ -552,14 +634,10 @@ fn place(
         None => chosen,
     };
     Placed {
-        at: chosen.map_or_else(|| closed::nearest_to_both(a, ra, b, rb), |k| candidates[k]),
+        at: chosen.map_or(fallback, |k| candidates[k]),
         candidates: candidates.len(),
         chosen,
-        confidence: if norm(a0, b0) * norm(a0, drawn) > 0.0 {
-            side.abs() / (norm(a0, b0) * norm(a0, drawn))
-        } else {
-            0.0
-        },
+        confidence: chirality.map_or(0.0, |(side, n)| if n > 0.0 { side.abs() / n } else { 0.0 }),
     }
 }
 
@@ -582,7 +660,7 @@ struct Placed {
 
 /// Solves `system` at its values, from its drawing, leaving out the constraints `analysis`
 /// finds fully redundant and measuring them at the solution: the core numerically, then the
-/// points given by two distances in closed form (see the crate documentation).
+/// points given by two conditions in closed form (see the crate documentation).
 ///
 /// # Errors
 /// [`SolveError::TooLarge`] beyond [`SolveOptions::max_unknowns`].
@@ -721,7 +799,7 @@ pub fn solve(
         forced[step - offset] = Some(candidate);
     }
 
-    // The points given by two distances, in closed form, each on the drawing's side. When a
+    // The points given by two conditions, in closed form, each on the drawing's side. When a
     // step finds no real candidate, the choice the drawing shows least clearly among the
     // steps it depends on is reversed and the steps placed again (bounded backtracking, the
     // ESM paper §4).
@@ -736,7 +814,7 @@ pub fn solve(
         let mut first_failure = None;
         let mut confidence = vec![f64::INFINITY; construction.steps.len()];
         for (k, step) in construction.steps.iter().enumerate() {
-            let placed = place(step, &layout, system, &x0, &x, flips[k], forced[k]);
+            let placed = place(step, &layout, system, &equations, &x0, &x, flips[k], forced[k]);
             let col = layout.columns(step.point).start;
             (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
             if placed.candidates == 2 && forced[k].is_none() {
@@ -779,7 +857,7 @@ pub fn solve(
     // turn, they join its part.
     let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
     for (k, step) in construction.steps.iter().enumerate() {
-        let placed = place(step, &layout, system, &x0, &x, flips[k], forced[k]);
+        let placed = place(step, &layout, system, &equations, &x0, &x, flips[k], forced[k]);
         let col = layout.columns(step.point).start;
         (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
         if placed.chosen.is_none() {
@@ -788,19 +866,20 @@ pub fn solve(
             // a dimension (a triangle whose inequality fails) or comes from a part that has
             // none; otherwise the realization reached for the anchors may be the wrong one,
             // and the step is a failure of the solve, not a proof.
-            let joined = solved.iter().any(|&c| {
-                let base = system.constraint_base_entities(c);
-                system.constraint(c).kind == gcs_model::ConstraintKind::Distance
-                    && base.len() == 2
-                    && step.anchors.iter().all(|a| base.contains(a))
-            });
+            let joined = step.two_distances().is_some()
+                && solved.iter().any(|&c| {
+                    let base = system.constraint_base_entities(c);
+                    system.constraint(c).kind == gcs_model::ConstraintKind::Distance
+                        && base.len() == 2
+                        && step.anchors.iter().all(|a| base.contains(a))
+                });
             let k = match from {
                 Some(k) => {
                     let part = &mut no_solution[k];
                     part.entities.push(step.point);
                     part.entities.sort();
                     part.entities.dedup();
-                    part.constraints.extend(step.constraints);
+                    part.constraints.extend(step.constraint_ids());
                     part.constraints.sort();
                     Some(k)
                 }
@@ -811,13 +890,13 @@ pub fn solve(
                 None => None,
             };
             if let Some(k) = k {
-                excluded.extend(step.constraints);
+                excluded.extend(step.constraint_ids());
                 tainted.insert(step.point, k);
             }
         }
         plan.push(PlanStep {
             entities: vec![step.point],
-            constraints: step.constraints.to_vec(),
+            constraints: step.constraint_ids(),
             method: Method::ClosedForm,
             candidates: placed.candidates,
             chosen: placed.chosen,
@@ -900,7 +979,7 @@ pub fn solve(
                 budget: ENUMERATION_BUDGET,
             };
             let mut y = core_x.clone();
-            found.search(&construction.steps, &mut y, &layout, system, &forced, &holds);
+            found.search(&construction.steps, &mut y, &layout, system, &equations, &forced, &holds);
             (Some(found.solutions), found.truncated)
         }
         None => (None, false),
@@ -958,6 +1037,7 @@ impl Realizations {
         y: &mut [f64],
         layout: &Layout,
         system: &System,
+        equations: &Equations<'_>,
         forced: &[Option<usize>],
         holds: &dyn Fn(usize, &[f64]) -> bool,
     ) {
@@ -975,9 +1055,8 @@ impl Realizations {
                 let candidates = if !holds(k, y) {
                     Vec::new()
                 } else if let Some(step) = steps.get(k) {
-                    let [a, b] = step.anchors.map(|e| at(layout, y, e));
-                    let [ra, rb] = step.constraints.map(|c| value(system, c));
-                    closed::circle_circle(a, ra, b, rb, 1e-12).candidates()
+                    let now = at(layout, y, step.point);
+                    Loci::at(step, system, equations, layout, y).candidates(now).0
                 } else {
                     if self.solutions.len() == self.limit {
                         self.truncated = true;

@@ -1,23 +1,72 @@
-//! The constructive order of a plane sketch: the points placed by two distances from points
-//! placed before them (Henneberg type I steps, the simplest closed-form steps of a DR-plan),
-//! found by peeling them off the end of the construction; what does not peel is the core,
-//! solved numerically first.
+//! The constructive order of a plane sketch: the points placed in closed form from entities
+//! placed before them (the closed-form steps of a DR-plan, ESM paper §3), found by peeling
+//! them off the end of the construction; what does not peel is the core, solved numerically
+//! first.
 //!
-//! Peeling: a point whose only constraints (among those solved) are two `Distance`s with a
-//! value to two other points can be placed last, once those points are placed; removing it
-//! may make its neighbours peelable in turn. Linear in the size of the system.
+//! A point is placed by constraints that each confine it to a *locus* given the other
+//! entities: a circle (a `Distance` with a value to another point) or a line (a condition
+//! affine in the point: on a line or segment, horizontal or vertical with the other end of
+//! its segment, a `DistanceX`/`DistanceY` from a point), or both coordinates at once (a `Fix`,
+//! a coincidence, a midpoint, a symmetry about a point). Two circles, a circle and a line, or
+//! two lines (or one two-row condition) determine it: two candidates, two, one.
+//!
+//! Peeling: a point whose constraints (among those solved) are all loci and remove exactly
+//! two degrees of freedom can be placed last, once the entities they refer to are placed;
+//! removing it may make its neighbours peelable in turn. Linear in the size of the system.
 
-use gcs_model::{ConstraintIdx, ConstraintKind, Dim, EntityIdx, EntityKind, System};
+use gcs_model::{
+    ConstraintIdx, ConstraintKind, Dim, EntityIdx, EntityKind, Metric, Signature, System,
+};
 
-/// A point placed by two distances.
+/// How a constraint confines the point a step places.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Locus {
+    /// A circle: a distance with a value to another point.
+    Circle,
+    /// A line (one row) or a point (two rows) — the constraint's equations are affine in the
+    /// point's coordinates.
+    Affine {
+        /// The degrees of freedom it removes from the point: 1 or 2.
+        rows: usize,
+    },
+}
+
+impl Locus {
+    /// The degrees of freedom the locus removes from the point.
+    pub fn doc(self) -> usize {
+        match self {
+            Locus::Circle => 1,
+            Locus::Affine { rows } => rows,
+        }
+    }
+}
+
+/// A point placed in closed form.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Step {
     /// The point placed.
     pub point: EntityIdx,
-    /// The two points it is measured from, in the order of the constraints.
-    pub anchors: [EntityIdx; 2],
-    /// The two distances.
-    pub constraints: [ConstraintIdx; 2],
+    /// The entities its constraints refer to besides it (placed before it: in the core or by
+    /// an earlier step), in the order of the constraints.
+    pub anchors: Vec<EntityIdx>,
+    /// Its constraints with their loci, in the system's order; their degrees of constraint sum
+    /// to two.
+    pub constraints: Vec<(ConstraintIdx, Locus)>,
+}
+
+impl Step {
+    /// The constraints, without their loci.
+    pub fn constraint_ids(&self) -> Vec<ConstraintIdx> {
+        self.constraints.iter().map(|(c, _)| *c).collect()
+    }
+
+    /// The two distances of a point by two distances (the anchors' circles), if it is one.
+    pub fn two_distances(&self) -> Option<[ConstraintIdx; 2]> {
+        match self.constraints.as_slice() {
+            [(a, Locus::Circle), (b, Locus::Circle)] => Some([*a, *b]),
+            _ => None,
+        }
+    }
 }
 
 /// The constructive order: `steps` in the order they are placed (each one's anchors are in
@@ -31,7 +80,7 @@ pub struct Construction {
 }
 
 /// The two points of a `Distance` with a value between two distinct points.
-fn distance_points(system: &System, c: ConstraintIdx) -> Option<[EntityIdx; 2]> {
+pub fn distance_points(system: &System, c: ConstraintIdx) -> Option<[EntityIdx; 2]> {
     let constraint = system.constraint(c);
     if constraint.kind != ConstraintKind::Distance || constraint.value.is_none() {
         return None;
@@ -40,6 +89,55 @@ fn distance_points(system: &System, c: ConstraintIdx) -> Option<[EntityIdx; 2]> 
     let [p, q] = base.as_slice() else { return None };
     let point = |e: EntityIdx| system.entity(e).kind() == EntityKind::Point;
     (point(*p) && point(*q) && p != q).then_some([*p, *q])
+}
+
+/// How constraint `c` confines the 2D point `p`, given every other entity it refers to;
+/// `None` when it is not one of the loci above (or does not involve `p` as a whole point once).
+pub fn locus(system: &System, c: ConstraintIdx, p: EntityIdx) -> Option<Locus> {
+    let constraint = system.constraint(c);
+    let base = system.constraint_base_entities(c);
+    if !base.contains(&p) {
+        return None;
+    }
+    let valued = constraint.value.is_some();
+    let line = Locus::Affine { rows: 1 };
+    let whole = Locus::Affine { rows: 2 };
+    match constraint.signature {
+        Signature::Metric(Metric::DistancePointPoint(..)) => {
+            distance_points(system, c).map(|_| Locus::Circle)
+        }
+        Signature::Metric(Metric::DistanceX(a, b) | Metric::DistanceY(a, b)) => {
+            (valued && a != b).then_some(line)
+        }
+        Signature::IncidentPointLine { point, line: l } => {
+            (point == p && !system.base_entities(l).contains(&p)).then_some(line)
+        }
+        Signature::Horizontal(e) | Signature::Vertical(e) => {
+            let (a, b) = system.segment_points(e)?;
+            (a != b && (a == p || b == p)).then_some(line)
+        }
+        Signature::Fix(e) => (e == p).then_some(whole),
+        Signature::CoincidentPoints(a, b) => (a != b).then_some(whole),
+        Signature::Midpoint { point, segment } => {
+            let (a, b) = system.segment_points(segment)?;
+            (point != a && point != b && a != b).then_some(whole)
+        }
+        Signature::SymmetricAboutPoint { a, b, center } => {
+            (a != b && a != center && b != center).then_some(whole)
+        }
+        _ => None,
+    }
+}
+
+/// The coordinate a one-row condition fixes whatever the other entities (0: x, 1: y), for the
+/// conditions that have one: a vertical segment or a `DistanceX` fixes x, a horizontal one or
+/// a `DistanceY` fixes y.
+fn axis(system: &System, c: ConstraintIdx) -> Option<usize> {
+    match system.constraint(c).signature {
+        Signature::Vertical(_) | Signature::Metric(Metric::DistanceX(..)) => Some(0),
+        Signature::Horizontal(_) | Signature::Metric(Metric::DistanceY(..)) => Some(1),
+        _ => None,
+    }
 }
 
 /// The constructive order of the constraints `solved` of a 2D system (empty for 3D: every
@@ -59,38 +157,58 @@ pub fn construction(system: &System, solved: &[ConstraintIdx]) -> Construction {
         bases[c.index()] = base;
     }
     let mut removed = vec![false; system.constraints().len()];
+    // Per entity, its constraints not yet peeled: their number, and the degrees of freedom
+    // they remove from it when each is a locus of it (`usize::MAX`-ish when one is not).
     let mut live: Vec<usize> = incident.iter().map(Vec::len).collect();
     let mut peeled = vec![false; n];
     let mut steps = Vec::new();
+    let point = |e: EntityIdx| system.entity(e).kind() == EntityKind::Point;
     let mut queue: Vec<EntityIdx> =
-        system.entity_indices().filter(|e| live[e.index()] == 2).collect();
+        system.entity_indices().filter(|e| point(*e) && matches!(live[e.index()], 1 | 2)).collect();
     while let Some(p) = queue.pop() {
-        if peeled[p.index()] || live[p.index()] != 2 || system.entity(p).kind() != EntityKind::Point
+        if peeled[p.index()] || !matches!(live[p.index()], 1 | 2) || !point(p) {
+            continue;
+        }
+        let mut constraints = Vec::new();
+        for &c in incident[p.index()].iter().filter(|c| !removed[c.index()]) {
+            let Some(l) = locus(system, c, p) else { break };
+            constraints.push((c, l));
+        }
+        if constraints.len() != live[p.index()]
+            || constraints.iter().map(|(_, l)| l.doc()).sum::<usize>() != 2
         {
             continue;
         }
-        let cs: Vec<ConstraintIdx> =
-            incident[p.index()].iter().copied().filter(|c| !removed[c.index()]).collect();
-        let [c1, c2] = cs.as_slice() else { continue };
-        let other = |c: ConstraintIdx| {
-            let [a, b] = distance_points(system, c)?;
-            Some(if a == p { b } else { a })
-        };
-        let (Some(a), Some(b)) = (other(*c1), other(*c2)) else { continue };
-        if a == b {
+        // Two circles about the same centre fix no point.
+        let mut anchors: Vec<EntityIdx> = Vec::new();
+        for (c, _) in &constraints {
+            for &e in &bases[c.index()] {
+                if e != p && !anchors.contains(&e) {
+                    anchors.push(e);
+                }
+            }
+        }
+        if constraints.iter().all(|(_, l)| *l == Locus::Circle) && anchors.len() != 2 {
+            continue;
+        }
+        // Two conditions on the same coordinate fix no point either.
+        if let [(a, _), (b, _)] = constraints.as_slice()
+            && axis(system, *a).is_some()
+            && axis(system, *a) == axis(system, *b)
+        {
             continue;
         }
         peeled[p.index()] = true;
-        for c in [*c1, *c2] {
+        for (c, _) in &constraints {
             removed[c.index()] = true;
             for &e in &bases[c.index()] {
                 live[e.index()] -= 1;
-                if live[e.index()] == 2 && !peeled[e.index()] {
+                if matches!(live[e.index()], 1 | 2) && !peeled[e.index()] {
                     queue.push(e);
                 }
             }
         }
-        steps.push(Step { point: p, anchors: [a, b], constraints: [*c1, *c2] });
+        steps.push(Step { point: p, anchors, constraints });
     }
     // Peeled last-placed first: placing runs the other way.
     steps.reverse();

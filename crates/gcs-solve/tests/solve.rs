@@ -434,3 +434,90 @@ fn a_triangle_has_two_realizations_and_an_impossible_one_none() {
     assert_eq!(sol.solutions.unwrap().len(), 0);
     assert!(!sol.truncated && sol.plan.iter().all(|p| p.complete), "{:?}", sol.plan);
 }
+
+/// A pinned point (`Fix`), a point at a distance from it on a horizontal segment, and a point
+/// given by `DistanceX` and `DistanceY` from the first: each placed in closed form (a point;
+/// a circle and a line, on the drawing's side; two lines), with nothing left to the numerics.
+fn pinned(side: f64) -> System {
+    model(&format!(
+        r#"System(name: "pinned", dim: 2,
+            entities: [
+                Point(id: "o", at: [1, 2]),
+                Point(id: "p", at: [{}, 2.5]),
+                Segment(id: "op", from: "o", to: "p"),
+                Point(id: "q", at: [35, 21]),
+            ],
+            constraints: [
+                Fix(id: "pin", a: "o"),
+                Horizontal(id: "flat", a: "op"),
+                Distance(id: "len", a: "o", b: "p", value: 10),
+                DistanceX(id: "dx", a: "o", b: "q", value: 30),
+                DistanceY(id: "dy", a: "o", b: "q", value: 20),
+            ])"#,
+        1.0 + side * 9.0
+    ))
+}
+
+#[test]
+fn pinned_points_and_lines_are_placed_in_closed_form() {
+    for (side, x) in [(1.0, 11.0), (-1.0, -9.0)] {
+        let s = pinned(side);
+        let sol = run(&s);
+        assert_eq!(sol.status, Status::Solved, "{sol:?}");
+        assert!(
+            sol.plan.iter().all(|p| p.method == gcs_solve::Method::ClosedForm),
+            "{:?}",
+            sol.plan
+        );
+        assert_eq!(sol.plan.len(), 3, "o, then p and q: {:?}", sol.plan);
+        let candidates: Vec<usize> = sol.plan.iter().map(|p| p.candidates).collect();
+        assert_eq!(candidates.iter().filter(|&&c| c == 2).count(), 1, "{candidates:?}");
+        assert_eq!(point(&s, &sol.x, "o"), (1.0, 2.0));
+        let (px, py) = point(&s, &sol.x, "p");
+        assert!((px - x).abs() < 1e-12 && (py - 2.0).abs() < 1e-12, "the drawn side: ({px}, {py})");
+        let (qx, qy) = point(&s, &sol.x, "q");
+        assert!((qx - 31.0).abs() < 1e-12 && (qy - 22.0).abs() < 1e-12, "({qx}, {qy})");
+    }
+    // Both sides are realizations.
+    let s = pinned(1.0);
+    let all = solve_with(&s, &SolveOptions { all: Some(10), ..SolveOptions::default() });
+    assert_eq!(all.solutions.as_ref().map(Vec::len), Some(2), "{:?}", all.solutions);
+}
+
+/// A point on a segment's line at a distance from a point off it: the circle and the line meet
+/// twice; the drawing picks one, `--choose` the other; with the distance too short they do
+/// not meet and the solve does not claim success.
+#[test]
+fn a_point_by_a_distance_and_a_line() {
+    let text = |d: &str| {
+        format!(
+            r#"System(name: "on_line", dim: 2,
+            entities: [
+                Point(id: "a", at: [0, 0]), Point(id: "b", at: [10, 0]), Point(id: "c", at: [3, 4]),
+                Segment(id: "ab", from: "a", to: "b"),
+                Point(id: "p", at: [6.5, 0.3]),
+            ],
+            constraints: [
+                Fix(id: "fa", a: "a"), Fix(id: "fb", a: "b"), Fix(id: "fc", a: "c"),
+                Incident(id: "on", a: "p", b: "ab"),
+                Distance(id: "cp", a: "c", b: "p", value: {d}),
+            ])"#
+        )
+    };
+    let s = model(&text("5"));
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Solved, "{sol:?}");
+    let (px, py) = point(&s, &sol.x, "p");
+    assert!((px - 6.0).abs() < 1e-12 && py.abs() < 1e-12, "the drawn one, (6, 0): ({px}, {py})");
+    let step = sol.plan.iter().position(|p| p.candidates == 2).expect("a step with two candidates");
+    let chosen = sol.plan[step].chosen.expect("chosen");
+    let other = solve_with(
+        &s,
+        &SolveOptions { choose: vec![(step, 1 - chosen)], ..SolveOptions::default() },
+    );
+    let (qx, qy) = point(&s, &other.x, "p");
+    assert!(qx.abs() < 1e-12 && qy.abs() < 1e-12, "the other one, (0, 0): ({qx}, {qy})");
+    let short = model(&text("3"));
+    let sol = run(&short);
+    assert_ne!(sol.status, Status::Solved, "a circle of radius 3 about (3, 4) misses y = 0");
+}
