@@ -1,8 +1,9 @@
 //! Criterion benchmarks of the solver (issue 13): `gcs_solve::solve` on a system already
 //! analysed (the analysis is outside the timing), on random Laman sketches built from a known
 //! realization and drawn with 5% jitter (`generate::laman_drawn`, one redundant distance), and
-//! on CAD-like sketches (`generate::rectangles`: fixed rectangles with horizontal, vertical and
-//! two dimensions each, drawn at their solution).
+//! on CAD-like sketches (`generate::rectangles_drawn`: fixed rectangles with horizontal,
+//! vertical and two dimensions each, every free corner drawn up to 0.5 off its place; solved
+//! in closed form, and with the whole system numerical for comparison).
 //!
 //! `benches/solve.sh` runs the same generator through `examples/drawn.rs` at 100 to 10,000
 //! points with 5% and 20% jitter and prints time, status and the triangles that kept their
@@ -40,11 +41,15 @@ fn main() {
     {
         let mut group = c.benchmark_group("solve-rectangles");
         group.sampling_mode(SamplingMode::Flat);
-        for n in [100, 1000] {
-            let system = gcs_model::generate::rectangles(n);
+        let numeric = SolveOptions { constructive: false, ..SolveOptions::default() };
+        for n in [100, 1000, 2500] {
+            let system = gcs_model::generate::rectangles_drawn(n, 0.5, 7);
             let analysis = analyze(&system, &options()).expect("analysis");
-            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            group.bench_with_input(BenchmarkId::new("closed-form", n), &n, |b, _| {
                 b.iter(|| black_box(solve(&system, &analysis, &SolveOptions::default())))
+            });
+            group.bench_with_input(BenchmarkId::new("numeric", n), &n, |b, _| {
+                b.iter(|| black_box(solve(&system, &analysis, &numeric)))
             });
         }
         group.finish();
