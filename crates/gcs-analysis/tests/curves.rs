@@ -187,3 +187,47 @@ fn a_fillet_is_tangent_at_its_joints() {
     );
     assert_eq!(verdict(&trap), (2, 0, vec!["t1".to_owned(), "t2".to_owned()]));
 }
+
+/// An arc slot as CAD programs draw it (SketchGraphs' Onshape sample, 00275001/4, ids
+/// renamed): a path arc, a cap at each of its ends (arcs centred on its end points), and the
+/// outer and inner arcs of the slot, each tangent to both caps at the points they share with
+/// them — no concentricity (Onshape's offsets are not expressible), so the sides are circles
+/// tangent to the two caps. The drawing holds to 1e-9 only (no witness). Built points first,
+/// a side would be a circle through two placed points with both tangents given, and the
+/// placement failed in every backend but float. With the tangencies of circles those points
+/// imply, the witness is rational at every seed, and exact and modp agree with float (5
+/// degrees of freedom, nothing redundant).
+#[test]
+fn an_arc_slot_tangent_at_its_caps_has_an_exact_witness() {
+    let s = system(
+        r#"Arc(id: "path", center: [0, 0], radius: 40, start: [37.587704831, -13.680805733], end: [13.680805733, 37.587704831]),
+    Arc(id: "cap1", center: [13.680805733, 37.587704831], radius: 5, start: [15.390906450, 42.286167935], end: [11.970705016, 32.889241728]),
+    Arc(id: "cap2", center: [37.587704831, -13.680805733], radius: 5, start: [32.889241728, -11.970705016], end: [42.286167935, -15.390906450]),
+    Arc(id: "outer", center: [0, 0], radius: 45, start: [42.286167935, -15.390906450], end: [15.390906450, 42.286167935]),
+    Arc(id: "inner", center: [0, 0], radius: 35, start: [32.889241728, -11.970705016], end: [11.970705016, 32.889241728])"#,
+        r#"Coincident(id: "cap1_on_path", a: "cap1.center", b: "path.end"),
+        Coincident(id: "cap2_on_path", a: "cap2.center", b: "path.start"),
+        Coincident(id: "c1", a: "cap1.end", b: "inner.end"),
+        Coincident(id: "c2", a: "cap1.start", b: "outer.end"),
+        Coincident(id: "c3", a: "cap2.end", b: "outer.start"),
+        Coincident(id: "c4", a: "cap2.start", b: "inner.start"),
+        TangentAt(id: "t1", a: "cap1", b: "outer", at: "cap1.start"),
+        TangentAt(id: "t2", a: "cap1", b: "inner", at: "cap1.end"),
+        TangentAt(id: "t3", a: "cap2", b: "outer", at: "cap2.end"),
+        TangentAt(id: "t4", a: "cap2", b: "inner", at: "cap2.start"),
+        Radius(id: "width", a: "cap1", value: 5)"#,
+    );
+    assert_eq!(verdict(&s), (5, 3, Vec::<String>::new()));
+    for seed in [1, 2, 3] {
+        let witness = gcs_jacobian::WitnessOptions { seed, ..Default::default() };
+        let exact = analyze(&s, &AnalysisOptions { witness, ..Default::default() }).expect("exact");
+        assert_eq!(exact.witness.source, gcs_jacobian::WitnessSource::Generated, "seed {seed}");
+        assert_eq!(exact.dof, 5, "seed {seed}");
+    }
+    let float = analyze(
+        &s,
+        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+    )
+    .expect("float");
+    assert_eq!((float.dof, float.rank), (5, 31));
+}

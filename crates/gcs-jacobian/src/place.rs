@@ -403,10 +403,38 @@ pub(crate) fn place(
     scale: f64,
     options: &PlaceOptions,
 ) -> Result<Vec<Q>, PlaceFailure> {
-    // A 2D distance between lines holds only between parallel lines (the witness is checked
-    // for it): the parallelism is imposed, as a constraint of its own, like the others.
+    let first = place_with(system, layout, pref, scale, options, false);
+    // Where the construction stopped at a tangency of two circles at a point, again with the
+    // tangencies of circles their points imply.
+    if let Err(f) = &first
+        && f.constraints.iter().any(|c| {
+            matches!(system.constraint(*c).signature, Signature::TangentAtCircleCircle { .. })
+        })
+        && let Ok(x) = place_with(system, layout, pref, scale, options, true)
+    {
+        return Ok(x);
+    }
+    first
+}
+
+/// [`place`], with the implied constraints of [`with_implied`] (the tangencies of circles at a
+/// point only when `tangencies`: a fallback, since a tangency imposed by its centres also holds
+/// where two circles coincide, where the placement could land on a special configuration).
+fn place_with(
+    system: &System,
+    layout: &Layout,
+    pref: &[Q],
+    scale: f64,
+    options: &PlaceOptions,
+    tangencies: bool,
+) -> Result<Vec<Q>, PlaceFailure> {
+    // Constraints that follow from the system's are imposed too, as constraints of their own
+    // ([`with_implied`]; the witness is checked against the system's own).
     let ncons = system.constraints().len();
-    let implied = with_implied_parallels(system);
+    let implied = with_implied(system, tangencies);
+    if tangencies && implied.is_none() {
+        return Err(PlaceFailure { entity: EntityIdx(0), constraints: Vec::new(), no_root: false });
+    }
     let system = implied.as_ref().unwrap_or(system);
     let own = |f: PlaceFailure| PlaceFailure {
         entity: f.entity,
@@ -445,35 +473,102 @@ pub(crate) fn place(
     }
 }
 
-/// The suffix of the id of the parallelism [`with_implied_parallels`] adds.
+/// The suffix of the id of the parallelism [`with_implied`] adds.
 const IMPLIED_PARALLEL: &str = "#parallel";
 
-/// The 2D system with a `Parallel` constraint (appended, so indices of the system's own
-/// constraints are kept) for each distance between two lines, which holds only between
-/// parallel lines; `None` when there is none (or an id is taken).
-fn with_implied_parallels(system: &System) -> Option<System> {
+/// The suffix of the id of the tangency of two circles [`with_implied`] adds.
+const IMPLIED_TANGENT: &str = "#tangent";
+
+/// The 2D system with, appended (so indices of the system's own constraints are kept), the
+/// constraints that follow from its own and that the placement can use where the originals
+/// leave it stuck; `None` when there is none (or an id is taken):
+///
+/// - a `Parallel` for each distance between two lines, which holds only between parallel
+///   lines;
+/// - with `tangencies`, a `Tangent` of two circles (their centres at the sum or difference of their radii) for
+///   each tangency of two circles or arcs at a point that is on both (an end point of one,
+///   coincident with an end point of the other or on it, as a fillet's or a slot's caps are):
+///   the point and the two centres in line with the point on both circles puts the centres at
+///   `r₁ ± r₂`. With it, an arc tangent to two placed arcs is placed as a circle tangent to two
+///   circles (then its end points, on the line of the centres, rationally), where the points
+///   first would ask a circle through two points with both tangents given.
+fn with_implied(system: &System, tangencies: bool) -> Option<System> {
     use gcs_model::SystemBuilder;
     if system.dim() != Dim::Two {
         return None;
     }
-    let pairs: Vec<(String, EntityIdx, EntityIdx)> = system
+    let mut added: Vec<(String, ConstraintKind, EntityIdx, EntityIdx)> = system
         .constraints()
         .iter()
         .filter_map(|c| match c.signature {
             Signature::Metric(gcs_model::Metric::DistanceLineLine(a, b)) => {
-                Some((c.id.clone(), a, b))
+                Some((format!("{}{IMPLIED_PARALLEL}", c.id), ConstraintKind::Parallel, a, b))
             }
             _ => None,
         })
         .collect();
-    if pairs.is_empty() {
+    // Points by coincidence class; the classes on each circle or arc.
+    let n = system.entities().len();
+    let mut class: Vec<usize> = (0..n).collect();
+    fn find(class: &mut [usize], mut e: usize) -> usize {
+        while class[e] != e {
+            class[e] = class[class[e]];
+            e = class[e];
+        }
+        e
+    }
+    let tangents: Vec<(&str, EntityIdx, EntityIdx, EntityIdx)> = system
+        .constraints()
+        .iter()
+        .filter_map(|c| match c.signature {
+            Signature::TangentAtCircleCircle { a, b, at } => Some((c.id.as_str(), a, b, at)),
+            _ => None,
+        })
+        .collect();
+    if tangencies && !tangents.is_empty() {
+        for c in system.constraints() {
+            if let Signature::CoincidentPoints(a, b) = c.signature {
+                let (x, y) = (find(&mut class, a.index()), find(&mut class, b.index()));
+                class[x] = y;
+            }
+        }
+        let mut on: Vec<(usize, EntityIdx)> = Vec::new();
+        for e in system.entity_indices() {
+            if let Some((s, t)) = system.arc_points(e) {
+                on.push((find(&mut class, s.index()), e));
+                on.push((find(&mut class, t.index()), e));
+            }
+        }
+        for c in system.constraints() {
+            if let Signature::IncidentPointCircle { point, circle } = c.signature {
+                on.push((find(&mut class, point.index()), circle));
+            }
+        }
+        let explicit = |a: EntityIdx, b: EntityIdx| {
+            system.constraints().iter().any(|c| {
+                matches!(c.signature, Signature::TangentCircleCircle(x, y)
+                    if (x, y) == (a, b) || (x, y) == (b, a))
+            })
+        };
+        for (id, a, b, at) in tangents {
+            let k = find(&mut class, at.index());
+            if a != b
+                && on.contains(&(k, a))
+                && on.contains(&(k, b))
+                && !explicit(a, b)
+                && !added.iter().any(|t| t.1 == ConstraintKind::Tangent && (t.2, t.3) == (a, b))
+            {
+                added.push((format!("{id}{IMPLIED_TANGENT}"), ConstraintKind::Tangent, a, b));
+            }
+        }
+    }
+    if added.is_empty() || (tangencies && !added.iter().any(|t| t.1 == ConstraintKind::Tangent)) {
         return None;
     }
     let mut b = SystemBuilder::from_system(system.clone());
-    for (id, x, y) in pairs {
+    for (id, kind, x, y) in added {
         let args = [system.entity(x).id.as_str(), system.entity(y).id.as_str()];
-        b.constraint(ConstraintKind::Parallel, &format!("{id}{IMPLIED_PARALLEL}"), &args, None)
-            .ok()?;
+        b.constraint(kind, &id, &args, None).ok()?;
     }
     Some(b.build())
 }
