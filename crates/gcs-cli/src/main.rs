@@ -12,6 +12,7 @@ mod analyze;
 mod batch;
 mod check;
 mod convert;
+mod navigate;
 mod solve;
 
 use std::path::PathBuf;
@@ -164,8 +165,9 @@ enum Command {
               value_parser = clap::value_parser!(u32).range(1..=10_000))]
         max_solutions: u32,
         /// Fix the choice of a closed-form step: STEP=K places step STEP of the `plan` list (its
-        /// index, from 0) at its candidate K (0: left of the line from its first anchor to its
-        /// second, 1: right). Repeatable; the other steps follow the drawing.
+        /// index, from 0) at its candidate K (a point by two distances: 0 left of the line from
+        /// its first anchor to its second, 1 right; by a distance and a line: 0 ahead along the
+        /// line's direction, 1 behind). Repeatable; the other steps follow the drawing.
         #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
         choose: Vec<(usize, usize)>,
         /// Files solved at once, on that many threads (default: the cores of this machine;
@@ -191,6 +193,28 @@ enum Command {
         /// Where to write the RON.
         #[arg(short, long, value_name = "OUT")]
         output: Option<PathBuf>,
+    },
+    /// Write the solution navigator of one model as a self-contained HTML page: the sketch
+    /// solved and drawn, the solve's plan beside it, each closed-form step's candidates to
+    /// pick (the realization re-assembled and redrawn), autosolve (the drawing's choices) and
+    /// a download of the realization shown as RON. The realizations are computed in advance
+    /// (every combination of the closed-form steps' candidates that keeps the consistent
+    /// redundant constraints; the core as solved from the drawing).
+    Navigate {
+        /// The model file (RON, or a CAD file: name the sketch with --sketch when it has
+        /// several).
+        #[arg(value_name = "FILE")]
+        input: PathBuf,
+        /// The page to write.
+        #[arg(short, long, value_name = "PAGE.html")]
+        output: PathBuf,
+        /// The sketch of a CAD file holding several (its model name).
+        #[arg(long, value_name = "NAME")]
+        sketch: Option<String>,
+        /// Embed at most N realizations (the page says when there were more).
+        #[arg(long, value_name = "N", default_value_t = 256,
+              value_parser = clap::value_parser!(u32).range(1..=10_000))]
+        max_solutions: u32,
     },
     /// Print a generated model of a family of growing size (the benchmark families) as RON.
     Generate {
@@ -254,6 +278,9 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
         Command::Convert { input, output } => convert::run(&input, output.as_deref()),
+        Command::Navigate { input, output, sketch, max_solutions } => {
+            navigate::run(&input, &output, sketch.as_deref(), max_solutions as usize)
+        }
         Command::Solve { format, out, all, max_solutions, choose, jobs, paths } => {
             let options = gcs_solve::SolveOptions {
                 all: all.then_some(max_solutions as usize),

@@ -48,6 +48,14 @@ pub enum ReportError {
     /// The solve was not attempted.
     #[error("{0}")]
     Solve(gcs_solve::SolveError),
+    /// The navigator has nothing to show.
+    #[error("{model}: cannot navigate: {why}")]
+    Navigate {
+        /// The model.
+        model: String,
+        /// Why.
+        why: String,
+    },
     /// The Jacobian at the witness has no rational form (a modular witness).
     #[error("{0}")]
     Jacobian(gcs_jacobian::JacobianError),

@@ -245,6 +245,27 @@ pub fn analyze(system: &System, options: &AnalyzeOptions) -> Result<Analyzed, Re
     Ok(Analyzed { analysis, structural, solution })
 }
 
+/// The analysis a solve rests on: the exact one, or, where it finds no exact witness, the
+/// float one; with the name of its backend.
+///
+/// # Errors
+/// The analysis failed.
+pub fn solving_analysis(
+    system: &System,
+) -> Result<(gcs_analysis::Analysis, &'static str), ReportError> {
+    match gcs_analysis::analyze(system, &AnalysisOptions::default()) {
+        Ok(a) => Ok((a, "exact")),
+        Err(AnalysisError::ApproximateWitness(_) | AnalysisError::NoModularWitness(_)) => {
+            let float = AnalysisOptions {
+                backend: Backend::Float { tolerance: 1e-9 },
+                ..AnalysisOptions::default()
+            };
+            Ok((gcs_analysis::analyze(system, &float).map_err(ReportError::Analysis)?, "float"))
+        }
+        Err(e) => Err(ReportError::Analysis(e)),
+    }
+}
+
 /// One model solved as `gcs solve` does: the redundant constraints from the exact analysis
 /// (or, where it finds no exact witness, the float one), the solve at the values, its report.
 ///
@@ -256,18 +277,7 @@ pub fn solve(
     import: Option<ImportReport>,
     options: &SolveOptions,
 ) -> Result<(SolveReport, Solution), ReportError> {
-    let exact = gcs_analysis::analyze(system, &AnalysisOptions::default());
-    let (analysis, backend) = match exact {
-        Ok(a) => (a, "exact"),
-        Err(AnalysisError::ApproximateWitness(_) | AnalysisError::NoModularWitness(_)) => {
-            let float = AnalysisOptions {
-                backend: Backend::Float { tolerance: 1e-9 },
-                ..AnalysisOptions::default()
-            };
-            (gcs_analysis::analyze(system, &float).map_err(ReportError::Analysis)?, "float")
-        }
-        Err(e) => return Err(ReportError::Analysis(e)),
-    };
+    let (analysis, backend) = solving_analysis(system)?;
     let solution = gcs_solve::solve(system, &analysis, options).map_err(ReportError::Solve)?;
     let report =
         SolveReport::new(system, file, &solution, options.tolerance, backend).with_import(import);

@@ -157,6 +157,10 @@ pub struct Solution {
     /// outermost. `None` without it. The search visits at most 2^20 partial placements
     /// (`truncated` then).
     pub solutions: Option<Vec<Vec<f64>>>,
+    /// With [`SolveOptions::all`]: for each realization of `solutions`, the candidate of each
+    /// closed-form step, in the order of the closed-form steps of `plan` (the steps of method
+    /// [`Method::ClosedForm`]); `None` without it.
+    pub solution_choices: Option<Vec<Vec<usize>>>,
     /// Whether the enumeration stopped at [`SolveOptions::all`]'s limit (or at its budget of
     /// partial placements).
     pub truncated: bool,
@@ -953,7 +957,7 @@ pub fn solve(
     } else {
         Status::Solved
     };
-    let (solutions, truncated) = match options.all {
+    let (solutions, solution_choices, truncated) = match options.all {
         Some(limit) => {
             // Each consistent redundant constraint is checked as soon as its entities are
             // placed: after the last step that places one of them (before any: depth 0).
@@ -975,14 +979,15 @@ pub fn solve(
             let mut found = Realizations {
                 limit,
                 solutions: Vec::new(),
+                choices: Vec::new(),
                 truncated: false,
                 budget: ENUMERATION_BUDGET,
             };
             let mut y = core_x.clone();
             found.search(&construction.steps, &mut y, &layout, system, &equations, &forced, &holds);
-            (Some(found.solutions), found.truncated)
+            (Some(found.solutions), Some(found.choices), found.truncated)
         }
-        None => (None, false),
+        None => (None, None, false),
     };
     let mut moved = 0.0f64;
     for e in system.entity_indices() {
@@ -1008,6 +1013,7 @@ pub fn solve(
         backtracked,
         bound_hit,
         solutions,
+        solution_choices,
         truncated,
     })
 }
@@ -1022,6 +1028,8 @@ const ENUMERATION_BUDGET: usize = 1 << 20;
 struct Realizations {
     limit: usize,
     solutions: Vec<Vec<f64>>,
+    /// Per realization, the candidate taken at each step.
+    choices: Vec<Vec<usize>>,
     truncated: bool,
     budget: usize,
 }
@@ -1063,6 +1071,8 @@ impl Realizations {
                         return;
                     }
                     self.solutions.push(y.to_vec());
+                    // Each level's next candidate is one past the one taken.
+                    self.choices.push(stack.iter().map(|(_, next)| next - 1).collect());
                     Vec::new()
                 };
                 stack.push((candidates, 0));
@@ -1120,6 +1130,22 @@ pub fn solved_system(system: &System, solution: &Solution) -> System {
         let _ = out.set_sketch(e, geometry);
     }
     out
+}
+
+/// The largest residual of the constraints of `system` with a value (or parameter-free) at the
+/// configuration `x` over the layout's columns, relative as [`Solution::max_residual`] is (to
+/// `scale`, the model's size: [`Solution::scale`]) — to check a realization of
+/// [`Solution::solutions`] against every constraint, the redundant ones included.
+pub fn max_relative_residual(system: &System, x: &[f64], scale: f64) -> f64 {
+    let layout = Layout::new(system);
+    if x.len() != layout.ncols() {
+        return f64::NAN;
+    }
+    let equations = Equations::new(system, &layout).with_branches_at(x);
+    system
+        .constraint_indices()
+        .filter_map(|c| relative(system, &equations, c, x, scale))
+        .fold(0.0, f64::max)
 }
 
 /// The triangles of distances of a plane system (three points joined pairwise by

@@ -1,0 +1,71 @@
+//! `gcs navigate` end to end: the page embeds every realization of the closed-form steps (each
+//! satisfying every constraint), the drawing's choices as autosolve, the plan; a CAD file opens,
+//! and a sketch it does not hold is refused with the names it does. (The page itself is driven in a browser by
+//! `tests/navigate_browser.sh`, which CI runs.)
+
+mod common;
+
+use common::gcs;
+use serde_json::Value;
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("gcs-navigate-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// The data the page embeds.
+fn embedded(page: &str) -> Value {
+    let marker = r#"<script type="application/json" id="data">"#;
+    let start = page.find(marker).expect("data") + marker.len();
+    let end = start + page[start..].find("</script>").expect("end of data");
+    serde_json::from_str(&page[start..end].replace("<\\/", "</")).expect("JSON")
+}
+
+#[test]
+fn the_page_holds_every_realization_and_the_drawings_choices() {
+    let page = temp("chain.html");
+    let (code, _, err) = gcs(&["navigate", "data/paper/chain.ron", "-o", page.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let page = std::fs::read_to_string(&page).unwrap();
+    assert!(page.contains("<title>gcs navigate: chain</title>"));
+    let d = embedded(&page);
+    // The same realizations as `gcs solve --all`.
+    let (_, out, _) = gcs(&["solve", "--all", "--format", "json", "data/paper/chain.ron"]);
+    let solved: Value = serde_json::from_str(out.trim()).unwrap();
+    let realizations = d["realizations"].as_array().unwrap();
+    assert_eq!(realizations.len(), solved["solutions"].as_array().unwrap().len());
+    assert!(realizations.len() > 2, "{}", realizations.len());
+    let mut seen = std::collections::BTreeSet::new();
+    for r in realizations {
+        assert!(r["max_residual"].as_f64().unwrap() <= 1e-9, "{}", r["max_residual"]);
+        assert!(r["svg"].as_str().unwrap().starts_with("<svg"));
+        assert!(r["ron"].as_str().unwrap().contains("System("));
+        assert!(seen.insert(r["choices"].to_string()), "distinct choices");
+    }
+    // Autosolve: the choices of the plan `gcs solve` reports.
+    let chosen: Vec<Value> = solved["plan"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["method"] == "closed-form")
+        .map(|p| p["chosen"].clone())
+        .collect();
+    let autosolve = d["autosolve"].as_u64().unwrap() as usize;
+    assert_eq!(realizations[autosolve]["choices"], Value::from(chosen));
+    assert_eq!(d["plan"].as_array().unwrap().len(), solved["plan"].as_array().unwrap().len());
+}
+
+#[test]
+fn a_cad_file_opens_and_a_missing_sketch_is_named() {
+    let page = temp("slot.html");
+    let (code, _, err) = gcs(&["navigate", "data/cad/slot.slvs", "-o", page.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let d = embedded(&std::fs::read_to_string(&page).unwrap());
+    assert_eq!(d["model"], "slot/g2");
+    assert!(!d["realizations"].as_array().unwrap().is_empty());
+    let (code, _, err) =
+        gcs(&["navigate", "data/cad/slot.slvs", "--sketch", "nope", "-o", page.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(err.contains("no sketch named \"nope\"") && err.contains("slot/g2"), "{err}");
+}
