@@ -3,17 +3,16 @@
 //! iff it is complete on at most 3 vertices, or 3-connected and redundantly rigid.
 //!
 //! Rigidity is Laman's count decided by the (2,3)-pebble game (Jacobs and Hendrickson 1997);
-//! redundant rigidity removes each bar of the pebble game's basis in turn and asks whether
-//! another bar takes its place; 3-connectivity removes each vertex in turn and looks for an
-//! articulation point of the rest. The cost is polynomial but not small — about
-//! `O(n · m²)` for the redundancy — which is why the analysis decides global rigidity by the
-//! stress matrix (`gcs_analysis::global`, a sparse elimination modulo a prime) and this is its
+//! redundant rigidity asks whether every bar lies in one of the game's fundamental circuits;
+//! 3-connectivity removes each vertex in turn and looks for an articulation point of the rest
+//! (`O(n · (n + m))`). The analysis decides global rigidity by the stress matrix
+//! (`gcs_analysis::global`, a sparse elimination modulo a prime, in 2D and 3D); this is its
 //! combinatorial cross-check in 2D (`tests/global.rs`: the two agree on thousands of random
 //! graphs).
 //!
 //! Parallel edges and loops are ignored: global rigidity depends on the simple graph only.
 
-use gcs_decompose::pebble::Game as Pebbles;
+use gcs_decompose::pebble_game;
 
 /// The simple graph: each unordered pair once, loops and out-of-range vertices dropped.
 fn simple(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, usize)> {
@@ -27,46 +26,27 @@ fn simple(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, usize)> {
     e
 }
 
-/// The pebble game over `edges`: its state and which edges it accepted (a basis of the 2D
-/// generic rigidity matroid).
-fn pebble_game(n: usize, edges: &[(usize, usize)]) -> (Pebbles, Vec<bool>) {
-    let mut p = Pebbles::new(n);
-    let accepted = edges.iter().enumerate().map(|(i, &(u, v))| p.add(u, v, i)).collect();
-    (p, accepted)
-}
-
 /// Whether the graph is generically rigid in the plane (Laman): its pebble game accepts
 /// `2n − 3` edges (every graph on at most one vertex is rigid).
 ///
 /// # Complexity
-/// `O(n · m)`.
+/// That of [`gcs_decompose::pebble_game`]: `O(n · m)` at worst.
 pub fn laman_rigid(n: usize, edges: &[(usize, usize)]) -> bool {
-    let e = simple(n, edges);
-    let (_, accepted) = pebble_game(n, &e);
-    n <= 1 || accepted.iter().filter(|a| **a).count() == 2 * n - 3
+    n <= 1 || pebble_game(n, &simple(n, edges)).rank == 2 * n - 3
 }
 
 /// Whether the graph is generically redundantly rigid in the plane: rigid, and still rigid
-/// after removing any one edge.
+/// after removing any one edge — every edge lies in a circuit of the rigidity matroid, which
+/// the pebble game's fundamental circuits tell ([`gcs_decompose::PebbleReport::in_circuit`]).
 ///
 /// # Complexity
-/// `O(n · m²)`: for each of the `2n − 3` basis edges, a search for another edge to replace it.
+/// That of the pebble game, `O(n · m)` at worst.
 pub fn redundantly_rigid(n: usize, edges: &[(usize, usize)]) -> bool {
-    let e = simple(n, edges);
-    let (p, accepted) = pebble_game(n, &e);
     if n <= 1 {
         return true;
     }
-    if accepted.iter().filter(|a| **a).count() != 2 * n - 3 {
-        return false;
-    }
-    let others: Vec<(usize, usize)> =
-        e.iter().zip(&accepted).filter(|(_, a)| !**a).map(|(e, _)| *e).collect();
-    e.iter().zip(&accepted).filter(|(_, a)| **a).all(|(&(u, v), _)| {
-        let mut q = p.clone();
-        q.remove(u, v);
-        others.iter().any(|&(a, b)| q.add(a, b, usize::MAX))
-    })
+    let report = pebble_game(n, &simple(n, edges));
+    report.rank == 2 * n - 3 && report.in_circuit().iter().all(|&inside| inside)
 }
 
 /// Whether the graph stays connected after removing any `k − 1` vertices and has more than
