@@ -31,6 +31,7 @@
 mod analysis;
 mod error;
 pub mod global;
+pub mod motions;
 mod sketch;
 
 pub use analysis::{

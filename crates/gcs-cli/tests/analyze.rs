@@ -529,8 +529,8 @@ fn a_model_over_the_timeout_gets_an_error_line_and_the_batch_goes_on() {
 
 /// `--svg DIR`: one picture per model, named by its file (a CAD file's sketches in a directory
 /// of the file's name); the redundant constraint drawn with what it is redundant with as its
-/// tooltip, the singular drawing's dependent constraints and configuration named; an absolute
-/// path lands inside the directory.
+/// tooltip, the singular drawing's dependent constraints and configuration named, its extra
+/// motion drawn as arrows; an absolute path lands inside the directory.
 #[test]
 fn pictures_of_the_analysis() {
     let dir = std::env::temp_dir().join(format!("gcs-svg-{}", std::process::id()));
@@ -563,6 +563,11 @@ fn pictures_of_the_analysis() {
     assert!(singular.contains("dependent at this drawing (singular) with d12, d23"), "{singular}");
     assert!(singular.contains("collinear p1, p2, p3"), "{singular}");
     assert!(read("data/cad/slot/g2.svg").contains("<svg"));
+    // Free motions: none for the rigid kite; one at the singular drawing (its extra motion),
+    // drawn as arrows at the points it moves.
+    assert!(!kite.contains("free motion"), "{kite}");
+    assert!(singular.contains("1 free motion at this drawing"), "{singular}");
+    assert!(singular.matches("<title>free motion 1 of 1:").count() >= 1, "{singular}");
     // The copy of the kite, given by its absolute path: inside the directory, beside the other.
     let inside = copy.with_extension("svg");
     let relative = inside.to_str().unwrap().trim_start_matches('/');

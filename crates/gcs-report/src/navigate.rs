@@ -48,7 +48,7 @@ pub fn navigate_page(system: &System, file: &str, limit: usize) -> Result<String
         shown.push(json!({
             "choices": c,
             "max_residual": gcs_solve::max_relative_residual(system, x, solution.scale),
-            "svg": picture::analysis_svg(&solved, &report),
+            "svg": picture::analysis_svg_with_motions(&solved, &report, &[]),
             "ron": solved.to_ron(),
         }));
     }

@@ -6,7 +6,8 @@
 //!
 //! Everything drawn comes from the model (the entities at their sketch positions) and from the
 //! [`Report`] (clusters, redundancy, the singular-configuration section): the picture says what
-//! the JSON report says. 3D models are drawn projected onto the xy plane, as the title says.
+//! the JSON report says; and the drawing's free motions (where its degrees of freedom are) as
+//! grey arrows, computed exactly at the drawing ([`gcs_analysis::motions`]). 3D models are drawn projected onto the xy plane, as the title says.
 
 use gcs_model::entity::Geometry;
 use gcs_model::{EntityIdx, System};
@@ -24,6 +25,7 @@ const LOOSE: &str = "#555555";
 const REDUNDANT: &str = "#ff7f0e";
 const CONFLICTING: &str = "#d62728";
 const SINGULAR: &str = "#c800c8";
+const MOTION: &str = "#444444";
 
 /// A 2D position of the drawing (y up, as in the model).
 type P = [f64; 2];
@@ -86,8 +88,29 @@ fn bounds(system: &System) -> Option<(P, P)> {
     (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
 }
 
-/// The SVG of `report` (an analysis of `system`), as text.
+/// The most unknowns for which [`analysis_svg`] computes the free motions (exactly, at the
+/// drawing).
+pub const MOTIONS_LIMIT: usize = 600;
+
+/// The SVG of `report` (an analysis of `system`), as text, with the drawing's free motions
+/// when the drawing satisfies its constraints and the system has at most [`MOTIONS_LIMIT`]
+/// unknowns.
 pub fn analysis_svg(system: &System, report: &Report) -> String {
+    let satisfied = report.sketch.as_ref().is_none_or(|s| s.satisfied);
+    let motions =
+        if satisfied && report.dof + report.sketch.as_ref().map_or(0, |s| s.extra_motions) > 0 {
+            gcs_analysis::motions::free_motions(system, MOTIONS_LIMIT).unwrap_or_default()
+        } else {
+            Vec::new()
+        };
+    analysis_svg_with_motions(system, report, &motions)
+}
+
+/// [`analysis_svg`] with the drawing's free motions
+/// ([`gcs_analysis::motions::free_motions`]: velocities over the columns of the system's
+/// layout) drawn as grey arrows at the points they move, one set per motion, each scaled so
+/// that its longest arrow is 7% of the drawing's size (within its margin).
+pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Vec<f64>]) -> String {
     let Some((lo, hi)) = bounds(system) else {
         return Document::new().add(Text::new("nothing drawn: no sketch positions")).to_string();
     };
@@ -280,6 +303,59 @@ pub fn analysis_svg(system: &System, report: &Report) -> String {
         }
     }
 
+    // The free motions: arrows at the points, in the direction each motion moves them.
+    let mut arrows = Group::new().set("stroke-linecap", "round").set("stroke", MOTION);
+    let layout = gcs_jacobian::Layout::new(system);
+    for (k, m) in motions.iter().enumerate() {
+        if m.len() != layout.ncols() {
+            continue;
+        }
+        let velocities: Vec<(P, P)> = system
+            .entity_indices()
+            .filter(|e| matches!(system.entity(*e).geometry, Geometry::Point { .. }))
+            .filter_map(|e| {
+                let c = layout.columns(e).start;
+                Some((anchor(system, e)?, [m[c], m[c + 1]]))
+            })
+            .collect();
+        let longest = velocities.iter().map(|(_, v)| v[0].hypot(v[1])).fold(0.0, f64::max);
+        if !(longest > 0.0) {
+            continue;
+        }
+        let scale = 0.07 * size / longest;
+        let title = format!(
+            "free motion {} of {}: the drawing can move this way without breaking a constraint",
+            k + 1,
+            motions.len()
+        );
+        for (p, v) in velocities {
+            if v[0].hypot(v[1]) <= 1e-6 * longest {
+                continue;
+            }
+            let q = [p[0] + scale * v[0], p[1] + scale * v[1]];
+            let ((x1, y1), (x2, y2)) = (at(p), at(q));
+            // The head: two short strokes back from the tip.
+            let (dx, dy) = (x2 - x1, y2 - y1);
+            let len = dx.hypot(dy).max(1e-300);
+            let (ux, uy) = (dx / len, dy / len);
+            let h = (0.3 * len).min(0.02 * size);
+            let d = format!(
+                "M {x1} {y1} L {x2} {y2} M {} {} L {x2} {y2} L {} {}",
+                x2 - h * (ux - 0.5 * uy),
+                y2 - h * (uy + 0.5 * ux),
+                x2 - h * (ux + 0.5 * uy),
+                y2 - h * (uy - 0.5 * ux),
+            );
+            arrows = arrows.add(
+                Path::new()
+                    .set("d", d)
+                    .set("fill", "none")
+                    .set("stroke-width", 1.5 * line_width)
+                    .add(Title::new(title.as_str())),
+            );
+        }
+    }
+
     // The verdict, above the drawing.
     let verdict = if report.rigid {
         if report.redundant.is_empty() {
@@ -315,6 +391,13 @@ pub fn analysis_svg(system: &System, report: &Report) -> String {
             if kinds.is_empty() { String::new() } else { format!(" — {}", kinds.join("; ")) }
         ));
     }
+    if !motions.is_empty() {
+        lines.push(format!(
+            "{} free motion{} at this drawing (grey arrows, one set each)",
+            motions.len(),
+            if motions.len() == 1 { "" } else { "s" }
+        ));
+    }
     if report.dim == 3 {
         lines.push("3D model: projected onto the xy plane".to_owned());
     }
@@ -337,6 +420,7 @@ pub fn analysis_svg(system: &System, report: &Report) -> String {
         .add(bars)
         .add(shapes)
         .add(marks)
+        .add(arrows)
         .to_string()
 }
 
