@@ -485,13 +485,14 @@ const IMPLIED_TANGENT: &str = "#tangent";
 ///
 /// - a `Parallel` for each distance between two lines, which holds only between parallel
 ///   lines;
-/// - with `tangencies`, a `Tangent` of two circles (their centres at the sum or difference of their radii) for
-///   each tangency of two circles or arcs at a point that is on both (an end point of one,
-///   coincident with an end point of the other or on it, as a fillet's or a slot's caps are):
-///   the point and the two centres in line with the point on both circles puts the centres at
-///   `r₁ ± r₂`. With it, an arc tangent to two placed arcs is placed as a circle tangent to two
-///   circles (then its end points, on the line of the centres, rationally), where the points
-///   first would ask a circle through two points with both tangents given.
+/// - with `tangencies`, a `Tangent` of two circles (their centres at the sum or difference of
+///   their radii) for each tangency of two circles or arcs at a point that is on both (an end
+///   point of one, coincident with an end point of the other or on it, as a fillet's or a
+///   slot's caps are): the point and the two centres in line with the point on both circles
+///   puts the centres at `r₁ ± r₂`. With it, an arc tangent to two placed arcs is placed as a
+///   circle tangent to two circles (then its end points, on the line of the centres,
+///   rationally), where the points first would ask a circle through two points with both
+///   tangents given.
 fn with_implied(system: &System, tangencies: bool) -> Option<System> {
     use gcs_model::SystemBuilder;
     if system.dim() != Dim::Two {
