@@ -16,7 +16,7 @@
 //! as numbered in the plan), which is how the tests drive it.
 
 use gcs_model::System;
-use gcs_solve::{Method, Solution, SolveOptions};
+use gcs_solve::{Method, SolveOptions};
 use serde_json::json;
 
 use crate::{Report, ReportError, picture, run};
@@ -43,8 +43,7 @@ pub fn navigate_page(system: &System, file: &str, limit: usize) -> Result<String
     let drawn: Vec<usize> = steps.iter().map(|(_, p)| p.chosen.unwrap_or(0)).collect();
     let mut shown = Vec::new();
     for (x, c) in realizations.iter().zip(&choices) {
-        let one = Solution { x: x.clone(), ..solution.clone() };
-        let solved = gcs_solve::solved_system(system, &one);
+        let solved = gcs_solve::solved_at(system, x);
         shown.push(json!({
             "choices": c,
             "max_residual": gcs_solve::max_relative_residual(system, x, solution.scale),

@@ -605,6 +605,26 @@ impl Loci {
     }
 }
 
+/// What the drawing shows of a closed-form step: where its point is drawn, and the point's
+/// chirality with respect to the step's loci at the drawing ([`Loci::side`]).
+struct Drawn {
+    at: [f64; 2],
+    chirality: Option<(f64, f64)>,
+}
+
+impl Drawn {
+    fn of(
+        step: &plan::Step,
+        system: &System,
+        equations: &Equations<'_>,
+        layout: &Layout,
+        x0: &[f64],
+    ) -> Self {
+        let at = at(layout, x0, step.point);
+        Drawn { at, chirality: Loci::at(step, system, equations, layout, x0).side(at) }
+    }
+}
+
 /// Places the point of a closed-form step: the real candidates, the one on the drawing's side
 /// of the anchors (ties by least displacement from the drawing); `None` when there is none.
 #[allow(clippy::too_many_arguments)]
@@ -613,15 +633,14 @@ fn place(
     layout: &Layout,
     system: &System,
     equations: &Equations<'_>,
-    x0: &[f64],
+    drawing: &Drawn,
     x: &[f64],
     flip: bool,
     forced: Option<usize>,
 ) -> Placed {
     let now = Loci::at(step, system, equations, layout, x);
     let (candidates, fallback) = now.candidates(at(layout, x, step.point));
-    let drawn = at(layout, x0, step.point);
-    let chirality = Loci::at(step, system, equations, layout, x0).side(drawn);
+    let (drawn, chirality) = (drawing.at, drawing.chirality);
     let norm = |u: [f64; 2], v: [f64; 2]| ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2)).sqrt();
     let flat = chirality.is_none_or(|(side, n)| !(side.abs() > 1e-9 * n));
     let chosen = match candidates.len() {
@@ -810,6 +829,11 @@ pub fn solve(
     let placed_by: std::collections::HashMap<EntityIdx, usize> =
         construction.steps.iter().enumerate().map(|(k, s)| (s.point, k)).collect();
     let core_x = x.clone();
+    let drawings: Vec<Drawn> = construction
+        .steps
+        .iter()
+        .map(|step| Drawn::of(step, system, &equations, &layout, &x0))
+        .collect();
     let mut flips = vec![false; construction.steps.len()];
     let mut backtracked = 0;
     let mut bound_hit = false;
@@ -818,7 +842,8 @@ pub fn solve(
         let mut first_failure = None;
         let mut confidence = vec![f64::INFINITY; construction.steps.len()];
         for (k, step) in construction.steps.iter().enumerate() {
-            let placed = place(step, &layout, system, &equations, &x0, &x, flips[k], forced[k]);
+            let placed =
+                place(step, &layout, system, &equations, &drawings[k], &x, flips[k], forced[k]);
             let col = layout.columns(step.point).start;
             (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
             if placed.candidates == 2 && forced[k].is_none() {
@@ -861,7 +886,8 @@ pub fn solve(
     // turn, they join its part.
     let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
     for (k, step) in construction.steps.iter().enumerate() {
-        let placed = place(step, &layout, system, &equations, &x0, &x, flips[k], forced[k]);
+        let placed =
+            place(step, &layout, system, &equations, &drawings[k], &x, flips[k], forced[k]);
         let col = layout.columns(step.point).start;
         (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
         if placed.chosen.is_none() {
@@ -1118,12 +1144,18 @@ fn on_grid(v: f64) -> Option<BigRational> {
 /// The system with its sketch replaced by the solution (coordinates on the grid of 10^-9, see
 /// [`on_grid`]), for writing as RON and analysing again.
 pub fn solved_system(system: &System, solution: &Solution) -> System {
+    solved_at(system, &solution.x)
+}
+
+/// [`solved_system`] at a configuration `x` over the layout's columns (a realization of
+/// [`Solution::solutions`]).
+pub fn solved_at(system: &System, x: &[f64]) -> System {
     let layout = Layout::new(system);
     let mut out = system.clone();
     for e in system.entity_indices() {
         let Some(repr) = layout.repr(e) else { continue };
         let coords: Option<Vec<BigRational>> =
-            layout.columns(e).map(|c| on_grid(solution.x[c])).collect();
+            layout.columns(e).map(|c| x.get(c).copied().and_then(on_grid)).collect();
         let Some(coords) = coords else { continue };
         let geometry = repr.to_sketch(&coords, &system.entity(e).geometry);
         // A solution the model refuses (a degenerate line) keeps the drawing for that entity.
