@@ -157,8 +157,7 @@ pub fn construction(system: &System, solved: &[ConstraintIdx]) -> Construction {
         bases[c.index()] = base;
     }
     let mut removed = vec![false; system.constraints().len()];
-    // Per entity, its constraints not yet peeled: their number, and the degrees of freedom
-    // they remove from it when each is a locus of it (`usize::MAX`-ish when one is not).
+    // Per entity, the number of its constraints not yet peeled.
     let mut live: Vec<usize> = incident.iter().map(Vec::len).collect();
     let mut peeled = vec![false; n];
     let mut steps = Vec::new();
