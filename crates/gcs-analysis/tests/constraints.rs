@@ -58,6 +58,14 @@ const CASES: &[(&[u8], &str)] = &[
     (BOTH, r#"Angle(id: "c", a: "l", b: "m")"#),
     (TWO, r#"Angle(id: "c", a: "pq", b: "m")"#),
     (TWO, r#"Angle(id: "c", a: "pq", b: "pr")"#),
+    (BOTH, r#"LengthRatio(id: "c", a: "pq", b: "rs")"#),
+    (TWO, r#"EqualAngle(id: "c", a: "pq", b: "l", c: "rs", d: "m")"#),
+    (TWO, r#"EqualAngle(id: "c", a: "pq", b: "pr", c: "pr", d: "rs")"#),
+    (TWO, r#"EqualDistance(id: "c", a: "p", b: "q", c: "r", d: "s")"#),
+    (TWO, r#"EqualDistance(id: "c", a: "p", b: "q", c: "r", d: "l")"#),
+    (TWO, r#"EqualDistance(id: "c", a: "l", b: "p", c: "q", d: "r")"#),
+    (TWO, r#"EqualDistance(id: "c", a: "p", b: "l", c: "q", d: "rs")"#),
+    (TWO, r#"EqualDistance(id: "c", a: "p", b: "l", c: "q", d: "l")"#),
     (THREE, r#"Angle(id: "c", a: "l", b: "a")"#),
     (THREE, r#"Angle(id: "c", a: "a", b: "b")"#),
     (BOTH, r#"Parallel(id: "c", a: "l", b: "m")"#),
@@ -283,5 +291,49 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
         }
     }
     // Every row of the table in docs/format.md, 2D and 3D (a new row adds to the count).
-    assert!(seen.len() >= 44, "{} rows: {seen:?}", seen.len());
+    assert!(seen.len() >= 57, "{} rows: {seen:?}", seen.len());
+}
+
+/// The equalities of angles and distances and the ratio of lengths are redundant exactly where
+/// the other constraints imply them, with those constraints as their spanning group.
+#[test]
+fn equalities_and_ratios_are_redundant_where_implied() {
+    let cases = [
+        // Parallel pairs make the angles equal.
+        (
+            r#"Parallel(id: "x1", a: "pq", b: "l"), Parallel(id: "x2", a: "pr", b: "m"),
+               EqualAngle(id: "c", a: "pq", b: "pr", c: "l", d: "m")"#,
+            vec!["x1", "x2"],
+        ),
+        // Two dimensioned lengths fix their ratio and the equality of two distances.
+        (
+            r#"Distance(id: "x1", a: "p", b: "q"), Distance(id: "x2", a: "r", b: "s"),
+               LengthRatio(id: "c", a: "pq", b: "rs")"#,
+            vec!["x1", "x2"],
+        ),
+        (
+            r#"Distance(id: "x1", a: "p", b: "l"), Distance(id: "x2", a: "q", b: "rs"),
+               EqualDistance(id: "c", a: "p", b: "l", c: "q", d: "rs")"#,
+            vec!["x1", "x2"],
+        ),
+        // Equal distances between points are equal lengths.
+        (
+            r#"EqualLength(id: "x1", a: "pq", b: "rs"),
+               EqualDistance(id: "c", a: "p", b: "q", c: "r", d: "s")"#,
+            vec!["x1"],
+        ),
+    ];
+    for (constraints, group) in cases {
+        let s = system(2, &entities(2), constraints);
+        for backend in [Backend::Exact, Backend::ModP] {
+            let a = analyze(&s, &AnalysisOptions { backend, ..AnalysisOptions::default() })
+                .unwrap_or_else(|e| panic!("{constraints}: {e}"));
+            assert_eq!(a.redundant.len(), 1, "{constraints}: {:?}", a.redundant);
+            let r = &a.redundant[0];
+            assert_eq!(s.constraint(r.constraint).id, "c", "{constraints}");
+            let spanning: Vec<&str> =
+                r.spanning_group.iter().map(|c| s.constraint(*c).id.as_str()).collect();
+            assert_eq!(spanning, group, "{constraints}");
+        }
+    }
 }

@@ -17,7 +17,7 @@
 //! Adding a constraint kind: its rows in [`gcs_model::Signature`], then one arm here in [`law`]
 //! and, for a metric one, in [`measure`] (the compiler lists them).
 
-use gcs_model::{EntityIdx, Metric, Signature};
+use gcs_model::{EntityIdx, Gap, Metric, Signature};
 use gcs_rank::Field;
 
 use crate::dual::{Dual, vec as v};
@@ -295,6 +295,96 @@ pub(crate) fn law<F: Field>(
             Law::exact(vec![b])
         }
         S::Fix(e) => Law::exact(fix_rows(l, e, sketch)),
+        S::Metric(Metric::LengthRatio(s, t)) => {
+            // The ratio of the squared lengths: a monotone function of the ratio, rational.
+            let (p1, q1) = l.segment(s);
+            let (p2, q2) = l.segment(t);
+            Law::measure(Dual::ratio(&v::norm2(&v::sub(&q1, &p1)), &v::norm2(&v::sub(&q2, &p2))))
+        }
+        S::EqualAngle { a, b, c, d } => {
+            // With θ₁ from a to b and θ₂ from c to d (normals turn as the lines do):
+            // sin(θ₁ − θ₂)·sin(θ₁ + θ₂) = 0, the same angle modulo 180° or opposite ones —
+            // equal angles between the undirected lines, whichever of the two supplementary
+            // angles is meant, with no branch to choose (an implied equality holds on either).
+            // A difference of squares: (sin θ₁ cos θ₂)² − (cos θ₁ sin θ₂)².
+            let (na, nb, nc, nd) = (l.normal2(a), l.normal2(b), l.normal2(c), l.normal2(d));
+            let x = &v::cross2(&na, &nb) * &v::dot(&nc, &nd);
+            let y = &v::dot(&na, &nb) * &v::cross2(&nc, &nd);
+            Law::exact(vec![&(&x * &x) - &(&y * &y)]).split(want_split, || (vec![x], vec![y]))
+        }
+        S::EqualDistance(p, q) => {
+            // d₁² = n₁/m₁ and d₂² = n₂/m₂: n₁ m₂ − n₂ m₁ = 0, a difference of squares (a
+            // point–point squared distance times a squared normal is |(u·n, u×n)|², Lagrange's
+            // identity).
+            let gap = |g: Gap| -> (Vec<Dual<F>>, Option<Vec<Dual<F>>>) {
+                match g {
+                    Gap::PointPoint(x, y) => (v::sub(&l.point(x), &l.point(y)), None),
+                    Gap::PointLine { point, line } => {
+                        let x = l.point(point);
+                        let [a, b, c0] = l.line2(line);
+                        let s = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
+                        (vec![s], Some(vec![a, b]))
+                    }
+                }
+            };
+            // |u|² |n|² as |w|²: w = u ⊗ n in the form above.
+            let times = |u: &[Dual<F>], n: &Option<Vec<Dual<F>>>| -> Vec<Dual<F>> {
+                match (n, u) {
+                    (None, _) => u.to_vec(),
+                    (Some(n), [s]) => v::scale(n, s),
+                    (Some(n), _) => vec![v::dot(u, n), v::cross2(u, n)],
+                }
+            };
+            let ((u1, n1), (u2, n2)) = (gap(p), gap(q));
+            let (left, right) = (times(&u1, &n2), times(&u2, &n1));
+            Law::exact(vec![&v::norm2(&left) - &v::norm2(&right)])
+                .split(want_split, || (left, right))
+        }
+    }
+}
+
+/// The degree in lengths of the residuals of a parameter-free constraint (how they grow when
+/// the model is scaled, the coordinates of lines scaling as the segments' do): 2 for most (a
+/// point on a circle, an equal length), more for the equalities, whose polynomials are
+/// products — 8 for equal angles, 2 more per point–line distance for equal distances. What a
+/// residual is measured against (the model's size to this power) in the projection and the
+/// solver.
+pub fn residual_degree(sig: Signature) -> i32 {
+    use Signature as S;
+    match sig {
+        S::EqualAngle { .. } => 8,
+        S::EqualDistance(p, q) => {
+            2 + 2 * [p, q].iter().filter(|g| matches!(g, Gap::PointLine { .. })).count() as i32
+        }
+        S::Metric(_)
+        | S::CoincidentPoints(..)
+        | S::ParallelLineLine(..)
+        | S::ParallelPlanePlane(..)
+        | S::ParallelLinePlane { .. }
+        | S::PerpendicularLineLine(..)
+        | S::PerpendicularPlanePlane(..)
+        | S::PerpendicularLinePlane { .. }
+        | S::IncidentPointLine { .. }
+        | S::IncidentPointPlane { .. }
+        | S::IncidentPointCircle { .. }
+        | S::IncidentPointSphere { .. }
+        | S::IncidentLinePlane { .. }
+        | S::TangentLineCircle { .. }
+        | S::TangentCircleCircle(..)
+        | S::TangentPlaneSphere { .. }
+        | S::TangentSphereSphere(..)
+        | S::ConcentricCircles(..)
+        | S::CenterPoint { .. }
+        | S::EqualLength(..)
+        | S::Midpoint { .. }
+        | S::SymmetricAboutPoint { .. }
+        | S::EqualRadius(..)
+        | S::TangentAtLineCircle { .. }
+        | S::TangentAtCircleCircle { .. }
+        | S::Symmetric { .. }
+        | S::Horizontal(_)
+        | S::Vertical(_)
+        | S::Fix(_) => 2,
     }
 }
 
@@ -422,6 +512,13 @@ pub(crate) fn measure(
         M::Radius(e) => length(l.round(e).1),
         M::DistanceX(a, b) => length(&l.point(b)[0] - &l.point(a)[0]),
         M::DistanceY(a, b) => length(&l.point(b)[1] - &l.point(a)[1]),
+        M::LengthRatio(s, t) => {
+            let (p1, q1) = l.segment(s);
+            let (p2, q2) = l.segment(t);
+            let ratio =
+                sqrt(&v::norm2(&v::sub(&q1, &p1))).over(&sqrt(&v::norm2(&v::sub(&q2, &p2))));
+            (ratio, value)
+        }
     })
 }
 

@@ -59,6 +59,7 @@ pub use dual::Dual;
 pub use equations::{Equations, Residual};
 pub use error::{JacobianError, NoWitness, Rejection};
 pub use jacobian::{Jacobian, RowOwner, assemble, relation_row};
+pub use laws::residual_degree;
 pub use layout::Layout;
 pub use repr::Repr;
 pub use witness::{Witness, WitnessOptions, WitnessSource, find_witness};

@@ -303,6 +303,8 @@ fn line_reads(signature: Signature) -> Vec<(EntityIdx, LineRead)> {
         | S::SymmetricAboutPoint { .. }
         | S::EqualRadius(..)
         | S::TangentAtCircleCircle { .. }
+        | S::EqualAngle { .. }
+        | S::EqualDistance(..)
         | S::Fix(_) => Vec::new(),
     }
 }
@@ -1366,6 +1368,9 @@ impl Placer<'_> {
         // from it (a rational unit direction): tangencies and equal lengths involving the
         // segment then have rational solutions.
         let snap = repr.map_or(Snap::Nothing, |r| r.snap());
+        // (The snaps below suit quadrics on lengths; one on a direction — an equal angle — may
+        // have no solution left but the degenerate one: then the quadrics are solved without.)
+        let unsnapped = linear.clone();
         let mut offset = 0;
         for m in self.current.clone() {
             let k = self.layout.columns(m).len();
@@ -1420,7 +1425,11 @@ impl Placer<'_> {
                 self.choose(&space, &pref, homogeneous).filter(|x| self.acceptable(x))
             })?
         } else {
-            self.solve_quadrics(n, &linear, &quads, &pref, homogeneous)?
+            self.solve_quadrics(n, &linear, &quads, &pref, homogeneous).or_else(|| {
+                (unsnapped.len() < linear.len())
+                    .then(|| self.solve_quadrics(n, &unsnapped, &quads, &pref, homogeneous))
+                    .flatten()
+            })?
         };
         let old: Vec<Q> = cols.iter().map(|c| self.coords[*c].clone()).collect();
         for (col, v) in cols.iter().zip(&x) {

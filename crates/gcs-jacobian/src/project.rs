@@ -20,6 +20,8 @@ struct ParameterFree<'s> {
     system: &'s System,
     layout: &'s Layout,
     variants: Vec<usize>,
+    /// The model's size (at least 1).
+    scale: f64,
 }
 
 impl Residuals for ParameterFree<'_> {
@@ -32,10 +34,11 @@ impl Residuals for ParameterFree<'_> {
         let sketch = |e: EntityIdx| crate::sketch::sketch_coords_in::<f64>(system, e);
         let mut values = Vec::new();
         let mut rows = Vec::new();
-        let mut push = |r: &crate::dual::Dual<f64>, cols: &[usize]| {
-            values.push(r.value);
+        // Each residual over the size to its degree beyond 2 (the tolerance's).
+        let mut push = |r: &crate::dual::Dual<f64>, cols: &[usize], unit: f64| {
+            values.push(r.value / unit);
             rows.push(SparseRow::from_entries(
-                r.grad.iter().enumerate().map(|(i, g)| (cols[i], *g)).collect(),
+                r.grad.iter().enumerate().map(|(i, g)| (cols[i], *g / unit)).collect(),
             ));
         };
         for ci in system.constraint_indices() {
@@ -46,8 +49,9 @@ impl Residuals for ParameterFree<'_> {
             let base = system.constraint_base_entities(ci);
             let local = Local::new(system, layout, &base, x);
             let law = laws::law(c.signature, self.variants[ci.index()], &local, &sketch, false);
+            let unit = self.scale.powi(laws::residual_degree(c.signature) - 2);
             for r in &law.rows {
-                push(r, &local.cols);
+                push(r, &local.cols, unit);
             }
         }
         for e in system.entity_indices() {
@@ -55,7 +59,7 @@ impl Residuals for ParameterFree<'_> {
             if repr.internal_rows() > usize::from(repr.homogeneous()) {
                 let local = Local::new(system, layout, &[e], x);
                 if let Some(r) = repr.internal_equations(local.coords(e)).first() {
-                    push(r, &local.cols);
+                    push(r, &local.cols, 1.0);
                 }
             }
         }
@@ -94,7 +98,10 @@ pub(crate) fn project(
         max_unknowns: MAX_UNKNOWNS,
         ..LmOptions::default()
     };
-    let outcome =
-        levenberg_marquardt(&ParameterFree { system, layout, variants }, start, &options)?;
+    let outcome = levenberg_marquardt(
+        &ParameterFree { system, layout, variants, scale: scale.max(1.0) },
+        start,
+        &options,
+    )?;
     outcome.converged.then_some(outcome.x)
 }

@@ -107,11 +107,19 @@ pub enum ConstraintKind {
     /// Two curves tangent at a given point (a fillet's joint): their normals there are
     /// parallel. The point is put on both curves by other constraints.
     TangentAt,
+    /// The length of the first segment over the length of the second.
+    LengthRatio,
+    /// The angle between the first two lines equals the angle between the last two (2D;
+    /// undirected lines: the angle or its supplement).
+    EqualAngle,
+    /// The distance between the first two entities equals the distance between the last two;
+    /// each pair is two points or a point and a line (2D).
+    EqualDistance,
 }
 
 impl ConstraintKind {
     /// Every constraint kind, in the order of the format's table.
-    pub const ALL: [ConstraintKind; 19] = [
+    pub const ALL: [ConstraintKind; 22] = [
         ConstraintKind::Coincident,
         ConstraintKind::Distance,
         ConstraintKind::Angle,
@@ -131,6 +139,9 @@ impl ConstraintKind {
         ConstraintKind::DistanceX,
         ConstraintKind::DistanceY,
         ConstraintKind::TangentAt,
+        ConstraintKind::LengthRatio,
+        ConstraintKind::EqualAngle,
+        ConstraintKind::EqualDistance,
     ];
 
     /// The variant names used in model files, in the order of [`ConstraintKind::ALL`].
@@ -166,6 +177,9 @@ impl ConstraintKind {
             ConstraintKind::DistanceX => "DistanceX",
             ConstraintKind::DistanceY => "DistanceY",
             ConstraintKind::TangentAt => "TangentAt",
+            ConstraintKind::LengthRatio => "LengthRatio",
+            ConstraintKind::EqualAngle => "EqualAngle",
+            ConstraintKind::EqualDistance => "EqualDistance",
         }
     }
 
@@ -173,7 +187,7 @@ impl ConstraintKind {
     pub fn role(self) -> Role {
         use ConstraintKind as K;
         match self {
-            K::Distance | K::Angle | K::Radius => Role::Metric,
+            K::Distance | K::Angle | K::Radius | K::LengthRatio => Role::Metric,
             K::Horizontal | K::Vertical | K::Fix => Role::Absolute,
             K::DistanceX | K::DistanceY => Role::AbsoluteMetric,
             K::Coincident
@@ -186,7 +200,9 @@ impl ConstraintKind {
             | K::Midpoint
             | K::Symmetric
             | K::EqualRadius
-            | K::TangentAt => Role::Relation,
+            | K::TangentAt
+            | K::EqualAngle
+            | K::EqualDistance => Role::Relation,
         }
     }
 
@@ -206,7 +222,10 @@ impl ConstraintKind {
     pub fn ron_fields(self) -> &'static [&'static str] {
         use ConstraintKind as K;
         match self {
-            K::Distance | K::Angle | K::DistanceX | K::DistanceY => &["id", "a", "b", "value"],
+            K::Distance | K::Angle | K::DistanceX | K::DistanceY | K::LengthRatio => {
+                &["id", "a", "b", "value"]
+            }
+            K::EqualAngle | K::EqualDistance => &["id", "a", "b", "c", "d"],
             K::TangentAt => &["id", "a", "b", "at"],
             K::Radius => &["id", "a", "value"],
             K::Horizontal | K::Vertical | K::Fix => &["id", "a"],
@@ -221,6 +240,12 @@ impl ConstraintKind {
             | K::EqualLength
             | K::EqualRadius => &["id", "a", "b"],
         }
+    }
+
+    /// Whether the constraint compares two pairs of entities (fields `a`, `b` and `c`, `d`): an
+    /// entity may then be named in both pairs, though not twice in one.
+    pub fn compares_pairs(self) -> bool {
+        matches!(self, ConstraintKind::EqualAngle | ConstraintKind::EqualDistance)
     }
 
     /// The names of the entity fields the constraint takes, in order.

@@ -60,7 +60,7 @@ pub use entity::{EntityClass, EntityKind, Geometry};
 pub use error::{ModelError, ModelErrorKind, Position};
 pub use kinds::{ConstraintKind, Dim, Role};
 pub use num_rational::BigRational;
-pub use signature::{Metric, Signature};
+pub use signature::{Gap, Metric, Signature};
 pub use system::{
     Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, System, SystemBuilder,
 };

@@ -52,6 +52,8 @@ pub enum Metric {
     DistanceX(EntityIdx, EntityIdx),
     /// The vertical distance from the first point to the second (signed, absolute).
     DistanceY(EntityIdx, EntityIdx),
+    /// The length of the first segment over the length of the second.
+    LengthRatio(EntityIdx, EntityIdx),
 }
 
 impl Metric {
@@ -70,6 +72,7 @@ impl Metric {
             M::Radius(_) => ConstraintKind::Radius,
             M::DistanceX(..) => ConstraintKind::DistanceX,
             M::DistanceY(..) => ConstraintKind::DistanceY,
+            M::LengthRatio(..) => ConstraintKind::LengthRatio,
         }
     }
 
@@ -83,11 +86,36 @@ impl Metric {
             | M::AngleLineLine(a, b)
             | M::AnglePlanePlane(a, b)
             | M::DistanceX(a, b)
-            | M::DistanceY(a, b) => vec![a, b],
+            | M::DistanceY(a, b)
+            | M::LengthRatio(a, b) => vec![a, b],
             M::DistancePointLine { point, line: other }
             | M::DistancePointPlane { point, plane: other } => vec![point, other],
             M::AngleLinePlane { line, plane } => vec![line, plane],
             M::Radius(e) => vec![e],
+        }
+    }
+}
+
+/// One side of an [`Signature::EqualDistance`]: the distance it measures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Gap {
+    /// Between two points.
+    PointPoint(EntityIdx, EntityIdx),
+    /// From a point to a line or segment (its carrier).
+    PointLine {
+        /// The point.
+        point: EntityIdx,
+        /// The line.
+        line: EntityIdx,
+    },
+}
+
+impl Gap {
+    /// The entities, in the order the constraint names them.
+    pub fn entities(self) -> [EntityIdx; 2] {
+        match self {
+            Gap::PointPoint(a, b) => [a, b],
+            Gap::PointLine { point, line } => [point, line],
         }
     }
 }
@@ -239,6 +267,21 @@ pub enum Signature {
     Vertical(EntityIdx),
     /// An entity pinned at its sketch position (absolute; DOC: the entity's DOF).
     Fix(EntityIdx),
+    /// The angle between lines `a` and `b` equals the angle between `c` and `d` (2D; lines
+    /// are undirected: the angle from `a` to `b` equals the angle from `c` to `d` modulo 180°,
+    /// or its opposite).
+    EqualAngle {
+        /// First line of the first angle.
+        a: EntityIdx,
+        /// Second line of the first angle.
+        b: EntityIdx,
+        /// First line of the second angle.
+        c: EntityIdx,
+        /// Second line of the second angle.
+        d: EntityIdx,
+    },
+    /// Two equal distances (2D).
+    EqualDistance(Gap, Gap),
 }
 
 impl Signature {
@@ -273,6 +316,8 @@ impl Signature {
             S::Horizontal(_) => K::Horizontal,
             S::Vertical(_) => K::Vertical,
             S::Fix(_) => K::Fix,
+            S::EqualAngle { .. } => K::EqualAngle,
+            S::EqualDistance(..) => K::EqualDistance,
         }
     }
 
@@ -307,6 +352,11 @@ impl Signature {
             S::TangentAtLineCircle { line, circle, at } => vec![line, circle, at],
             S::TangentAtCircleCircle { a, b, at } => vec![a, b, at],
             S::Horizontal(e) | S::Vertical(e) | S::Fix(e) => vec![e],
+            S::EqualAngle { a, b, c, d } => vec![a, b, c, d],
+            S::EqualDistance(p, q) => {
+                let (p, q) = (p.entities(), q.entities());
+                vec![p[0], p[1], q[0], q[1]]
+            }
         }
     }
 
@@ -541,6 +591,39 @@ impl Signature {
                 }
                 let line = single(C::Line).ok_or("a line or segment")?;
                 Ok((if kind == K::Horizontal { S::Horizontal(line) } else { S::Vertical(line) }, 1))
+            }
+            K::LengthRatio => match kinds {
+                [EntityKind::Segment, EntityKind::Segment] => {
+                    Ok((S::Metric(M::LengthRatio(args[0], args[1])), 1))
+                }
+                _ => Err("two segments"),
+            },
+            K::EqualAngle => match classes.as_slice() {
+                [C::Line, C::Line, C::Line, C::Line] if d2 => {
+                    Ok((S::EqualAngle { a: args[0], b: args[1], c: args[2], d: args[3] }, 1))
+                }
+                _ => Err("four lines or segments (fields a, b, c, d), in 2D"),
+            },
+            K::EqualDistance => {
+                let expected = "two pairs (fields a, b and c, d), each two points or a point and \
+                                a line or segment, in 2D";
+                if !d2 {
+                    return Err(expected);
+                }
+                let gap = |x: usize| match (classes[x], classes[x + 1]) {
+                    (C::Point, C::Point) => Some(Gap::PointPoint(args[x], args[x + 1])),
+                    (C::Point, C::Line) => {
+                        Some(Gap::PointLine { point: args[x], line: args[x + 1] })
+                    }
+                    (C::Line, C::Point) => {
+                        Some(Gap::PointLine { point: args[x + 1], line: args[x] })
+                    }
+                    _ => None,
+                };
+                match (classes.len() == 4).then(|| (gap(0), gap(2))) {
+                    Some((Some(p), Some(q))) => Ok((S::EqualDistance(p, q), 1)),
+                    _ => Err(expected),
+                }
             }
             K::Fix => match args {
                 [e] => Ok((S::Fix(*e), 0)),

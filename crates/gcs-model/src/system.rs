@@ -674,9 +674,11 @@ impl SystemBuilder {
         for (field, arg) in fields.iter().zip(args) {
             resolved.push(self.resolve("constraint", id, field, arg)?);
         }
+        // (Between two pairs, an entity may be in both: a line bisecting an angle, two points
+        // at the same distance from one line.)
         for i in 0..resolved.len() {
             for j in i + 1..resolved.len() {
-                if resolved[i] == resolved[j] {
+                if resolved[i] == resolved[j] && !(kind.compares_pairs() && i / 2 != j / 2) {
                     return Err(ModelError::new(ModelErrorKind::RepeatedEntity {
                         id: id.to_owned(),
                         entity: args[i].to_string(),
@@ -687,7 +689,10 @@ impl SystemBuilder {
             }
         }
         if let Some(v) = &value
-            && matches!(kind, ConstraintKind::Distance | ConstraintKind::Radius)
+            && matches!(
+                kind,
+                ConstraintKind::Distance | ConstraintKind::Radius | ConstraintKind::LengthRatio
+            )
             && v.is_negative()
         {
             return Err(ModelError::new(ModelErrorKind::Negative {

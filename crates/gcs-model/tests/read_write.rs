@@ -80,13 +80,16 @@ fn zoo_2d_doc_table() {
         ("ta", 1),
         ("cp", 2),
         ("symp", 2),
+        ("ratio", 1),
+        ("ea", 1),
+        ("ed", 1),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");
     }
     // Points (the arc's two and the centre `arc.center` named by a constraint among them),
     // lines, circles and the arc.
-    assert_eq!(s.dof_sum(), 10 * 2 + 2 * 2 + 3 * 3 + 3);
+    assert_eq!(s.dof_sum(), 11 * 2 + 4 * 2 + 3 * 3 + 3);
     // Every constraint kind exists in 2D, and the zoo has them all.
     let kinds: std::collections::BTreeSet<ConstraintKind> =
         s.constraints().iter().map(|c| c.kind).collect();
@@ -142,6 +145,7 @@ fn zoo_3d_doc_table() {
         ("eq", 1),
         ("cps", 3),
         ("symp", 3),
+        ("ratio", 1),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");
@@ -149,8 +153,8 @@ fn zoo_3d_doc_table() {
     let kinds: std::collections::BTreeSet<ConstraintKind> =
         s.constraints().iter().map(|c| c.kind).collect();
     // All but the 2D-only kinds: Horizontal, Vertical, EqualRadius, DistanceX, DistanceY,
-    // TangentAt.
-    assert_eq!(kinds.len(), ConstraintKind::ALL.len() - 6);
+    // TangentAt, EqualAngle, EqualDistance.
+    assert_eq!(kinds.len(), ConstraintKind::ALL.len() - 8);
 }
 
 #[test]

@@ -445,6 +445,9 @@ impl Facts {
                 | S::TangentAtCircleCircle { .. }
                 | S::Metric(Metric::DistanceX(..))
                 | S::Metric(Metric::DistanceY(..))
+                | S::Metric(Metric::LengthRatio(..))
+                | S::EqualAngle { .. }
+                | S::EqualDistance(..)
                 | S::Fix(_) => {}
             }
         }

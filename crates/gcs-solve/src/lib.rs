@@ -265,13 +265,18 @@ struct Problem<'s> {
 }
 
 /// What a residual of constraint `c` is measured against: the model's size for a length, 180°
-/// for an angle, the size squared for the polynomial residuals of parameter-free constraints.
+/// for an angle, 1 for a ratio, the size squared for the polynomial residuals of
+/// parameter-free constraints (to the power of their degree in lengths where it is not 2:
+/// [`gcs_jacobian::residual_degree`]).
 fn unit(system: &System, c: ConstraintIdx, scale: f64) -> f64 {
-    let kind = system.constraint(c).kind;
+    let constraint = system.constraint(c);
+    let kind = constraint.kind;
     if !kind.is_metric() {
-        scale * scale
+        scale.powi(gcs_jacobian::residual_degree(constraint.signature))
     } else if kind == gcs_model::ConstraintKind::Angle {
         180.0
+    } else if kind == gcs_model::ConstraintKind::LengthRatio {
+        1.0
     } else {
         scale
     }
