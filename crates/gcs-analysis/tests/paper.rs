@@ -495,6 +495,17 @@ const CLAIMS: &[Claim] = &[
         ]),
     },
     Claim {
+        file: "data/sketches/ratios.ron",
+        unknowns: Some(8),
+        equations: Some(8),
+        rank: 8,
+        dof_absolute: 0,
+        trivial_motions: 0,
+        dof: 0,
+        redundant: &[],
+        clusters: None,
+    },
+    Claim {
         file: "data/sketches/rectangle.ron",
         unknowns: Some(8),
         equations: Some(8),
@@ -541,6 +552,7 @@ const WHOLE: &[&str] = &[
     "data/sketches/block_3d.ron",
     "data/sketches/rectangle.ron",
     "data/sketches/rectangle_overdimensioned.ron",
+    "data/sketches/ratios.ron",
     "data/sketches/slot.ron",
 ];
 

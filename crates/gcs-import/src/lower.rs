@@ -447,10 +447,26 @@ impl Lowering {
                     ],
                 )
             }
-            (Kind::EqualAngle, _) => unsupported("equal angles"),
-            (Kind::LengthRatio, _) => unsupported("a ratio of lengths"),
+            (Kind::EqualAngle, [S, S, S, S])
+                if t[..2].iter().any(|x| t[2..].iter().any(|y| y.id == x.id)) =>
+            {
+                // (The model takes it, but its witness needs the bisector of two directions,
+                // which the constructive placement cannot build yet: analysed only in float.)
+                unsupported("equal angles with one line in both (a bisector)")
+            }
+            (Kind::EqualAngle, [S, S, S, S]) => {
+                self.push(K::EqualAngle, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
+            }
+            (Kind::EqualAngle, _) => unsupported("equal angles between curves other than lines"),
+            (Kind::LengthRatio, [S, S]) if t.iter().all(|x| x.shape == Some(Shape::Segment)) => {
+                self.push(K::LengthRatio, &c.id, &[&t[0], &t[1]], Some(abs(value()?)))
+            }
+            (Kind::LengthRatio, _) => unsupported("a ratio of lengths of arcs or infinite lines"),
             (Kind::LengthDifference, _) => unsupported("a difference of lengths"),
             (Kind::EqualLineArcLength, _) => unsupported("a segment as long as an arc"),
+            // (The model's EqualDistance states both; lowered, they leave the constructive
+            // placement loops it cannot close yet where other constraints tie the same
+            // lengths, so they stay skipped until it can.)
             (Kind::EqualPointLineDistances, _) => unsupported("equal point–line distances"),
             (Kind::EqualLengthPointLineDistance, _) => {
                 unsupported("a length equal to a point–line distance")

@@ -370,7 +370,8 @@ fn mapping_in_a_workplane() {
     assert_eq!(c15.kind, Kind::Symmetric);
     assert_eq!(refs(c15)[2], r("e.00040000", Part::Whole));
     assert_eq!(kind("c.00000010"), Kind::Fix);
-    assert!(skipped_reason(s, "c.00000011").contains("supplementary"));
+    // The supplementary form (other=1) is an EqualAngle like the other.
+    assert_eq!(kind("c.00000011"), Kind::EqualAngle);
     assert!(skipped_reason(s, "c.00000012").contains("ARC_ARC_LEN_RATIO (210)"));
     let c19 = constraint(s, "c.00000013");
     assert_eq!(c19.kind, Kind::TangentAtEnds);
@@ -399,8 +400,8 @@ fn mapping_in_a_workplane() {
     // ANGLE 30 with other=1 from a 45-degree line back to the x axis: -150 (clockwise).
     assert_eq!(value("c.00000020"), Some(n(-150)));
 
-    assert_eq!(s.constraints.len(), 25);
-    assert_eq!((s.skipped.len(), s.notes.len()), (5, 2));
+    assert_eq!(s.constraints.len(), 26);
+    assert_eq!((s.skipped.len(), s.notes.len()), (4, 2));
     assert_eq!(
         geometry(s, "e.00080000"),
         &Geometry::Arc {

@@ -521,3 +521,23 @@ fn a_point_by_a_distance_and_a_line() {
     let sol = run(&short);
     assert_ne!(sol.status, Status::Solved, "a circle of radius 3 about (3, 4) misses y = 0");
 }
+
+/// A ratio of lengths is a dimension the solver meets: edited from 2 to 4, the right side of
+/// `data/sketches/ratios.ron` shrinks to 2, and the corner above it follows (equal heights,
+/// equal slopes).
+#[test]
+fn an_edited_ratio_moves_the_sketch() {
+    let text =
+        std::fs::read_to_string(gcs_suite::workspace_root().join("data/sketches/ratios.ron"))
+            .unwrap()
+            .replace("value: 2)", "value: 4)");
+    let s = System::from_ron_str(&text, None).unwrap();
+    let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
+    let sol = solve(&s, &analysis, &SolveOptions::default()).unwrap();
+    assert_eq!(sol.status, gcs_solve::Status::Solved);
+    let layout = gcs_jacobian::Layout::new(&s);
+    let at = |id: &str| sol.x[layout.columns(s.entity_by_id(id).unwrap())].to_vec();
+    let near = |p: Vec<f64>, q: [f64; 2]| (p[0] - q[0]).abs() < 1e-9 && (p[1] - q[1]).abs() < 1e-9;
+    assert!(near(at("p3"), [8.0, 2.0]), "{:?}", at("p3"));
+    assert!(near(at("p4"), [0.0, 2.0]), "{:?}", at("p4"));
+}

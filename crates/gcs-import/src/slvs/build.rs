@@ -990,13 +990,8 @@ impl<'a> Builder<'a> {
                 (Kind::EqualPointLineDistances, None)
             }
             ct::EQUAL_ANGLE => {
-                if c.other {
-                    return skip(
-                        "EQUAL_ANGLE (54) in its supplementary form (other=1): the angle between \
-                         the first two lines is 180° minus the angle between the last two; the \
-                         IR's EqualAngle has no such flag",
-                    );
-                }
+                // (`other=1`, the supplementary form, needs nothing more: the model's
+                // EqualAngle holds for either of the two supplementary angles.)
                 r.add(self.vector(c.entity_a, "entityA")?);
                 r.add(self.vector(c.entity_b, "entityB")?);
                 r.add(self.vector(c.entity_c, "entityC")?);
