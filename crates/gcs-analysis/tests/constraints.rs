@@ -54,6 +54,7 @@ const CASES: &[(&[u8], &str)] = &[
     (THREE, r#"Distance(id: "c", a: "pq", b: "rs")"#),
     (BOTH, r#"Parallel(id: "c0", a: "l", b: "m"), Distance(id: "c", a: "l", b: "m")"#),
     (TWO, r#"Parallel(id: "c0", a: "pq", b: "rs"), Distance(id: "c", a: "pq", b: "rs")"#),
+    (TWO, r#"Concentric(id: "c0", a: "k", b: "k2"), Distance(id: "c", a: "k", b: "k2")"#),
     (THREE, r#"Parallel(id: "c0", a: "a", b: "b"), Distance(id: "c", a: "a", b: "b")"#),
     (BOTH, r#"Angle(id: "c", a: "l", b: "m")"#),
     (TWO, r#"Angle(id: "c", a: "pq", b: "m")"#),
@@ -281,6 +282,12 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                 {
                     b.constraint(ConstraintKind::Parallel, "parallel", &args, None).unwrap();
                 }
+                if matches!(
+                    signature,
+                    Signature::Metric(gcs_model::Metric::DistanceCircleCircle(..))
+                ) {
+                    b.constraint(ConstraintKind::Concentric, "concentric", &args, None).unwrap();
+                }
                 b.constraint(kind, "c", &args, None).unwrap_or_else(|e| panic!("{e}"));
                 let s = b.build();
                 let a = analyze(&s, &AnalysisOptions { clusters: false, ..Default::default() })
@@ -291,7 +298,7 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
         }
     }
     // Every row of the table in docs/format.md, 2D and 3D (a new row adds to the count).
-    assert!(seen.len() >= 57, "{} rows: {seen:?}", seen.len());
+    assert!(seen.len() >= 58, "{} rows: {seen:?}", seen.len());
 }
 
 /// The equalities of angles and distances and the ratio of lengths are redundant exactly where

@@ -29,6 +29,7 @@
 
 use gcs_model::{ConstraintKind as K, Dim, System, SystemBuilder};
 use num_rational::BigRational;
+use num_traits::ToPrimitive;
 
 use crate::ir::{Constraint, Geometry, Kind, Part, Ref, Sketch, Skipped};
 
@@ -337,6 +338,108 @@ impl Lowering {
         Ok(())
     }
 
+    /// A distance `v` from a point, a line or a circle to a circle or arc `C` (to its
+    /// boundary; between circles drawn concentric, the model's `Distance` of two circles): the
+    /// circle `<id>#offset` concentric with `C` through the point (tangent to the
+    /// line or the other circle), at distance `v` from `C` — the difference of their radii, a
+    /// dimension rational at a rational witness where the distance to the boundary itself is
+    /// not. Its sketch radius is the drawing's (to 10^-9).
+    fn distance_to_round(&mut self, id: &str, t: &[Target], v: BigRational) -> Result<(), String> {
+        let (round, other) =
+            if t[1].class == Class::Round { (&t[1], &t[0]) } else { (&t[0], &t[1]) };
+        let (center, r) = self.round_f64(&round.id).ok_or("the circle has no sketch position")?;
+        // Two circles drawn concentric: the distance between them is the model's own.
+        if other.class == Class::Round
+            && self.round_f64(&other.id).is_some_and(|(c2, _)| c2 == center)
+        {
+            return self.push(K::Distance, id, &[other, round], Some(v));
+        }
+        let d = |p: &[f64]| ((p[0] - center[0]).powi(2) + (p[1] - center[1]).powi(2)).sqrt();
+        let radius = match other.class {
+            Class::Point => {
+                d(&self.point_f64(&other.id).ok_or("the point has no sketch position")?)
+            }
+            Class::Straight => {
+                let (p, q) = self.line_f64(other).ok_or("the line has no sketch position")?;
+                let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+                ((center[0] - p[0]) * dy - (center[1] - p[1]) * dx).abs() / dx.hypot(dy)
+            }
+            _ => {
+                let (c2, r2) =
+                    self.round_f64(&other.id).ok_or("the circle has no sketch position")?;
+                let (gap, vf) = (d(&c2), v.to_f64().unwrap_or(0.0));
+                // Tangent outside or inside: the one whose radius is C's plus or minus `v`.
+                [gap - r2, gap + r2, r2 - gap]
+                    .into_iter()
+                    .filter(|x| *x > 0.0)
+                    .min_by(|a, b| {
+                        let off = |x: f64| (x - r - vf).abs().min((x - (r - vf)).abs());
+                        off(*a).total_cmp(&off(*b))
+                    })
+                    .ok_or("the circles have no tangent circle concentric with the first")?
+            }
+        };
+        let exact = |x: f64| BigRational::from_float(x).map(|q| snap(&q));
+        let (cx, cy, rr) = (exact(center[0]), exact(center[1]), exact(radius));
+        let (Some(cx), Some(cy), Some(rr)) = (cx, cy, rr) else {
+            return Err("the drawing's distance is not a number".into());
+        };
+        if rr <= BigRational::from_integer(0.into()) {
+            return Err("the point, line or circle is at the circle's centre".into());
+        }
+        let offset = format!("{id}#offset");
+        self.builder.circle(&offset, Some(vec![cx, cy]), Some(rr)).map_err(|e| e.to_string())?;
+        let helper = Target { id: offset, class: Class::Round, shape: Some(Shape::Circle) };
+        let touch = if other.class == Class::Point { K::Incident } else { K::Tangent };
+        self.push_all(
+            id,
+            &[
+                (K::Concentric, "concentric", vec![&helper, round], None),
+                (touch, "on", vec![other, &helper], None),
+                (K::Distance, "", vec![&helper, round], Some(v)),
+            ],
+        )
+    }
+
+    /// A point's sketch position in floats (a named centre: its curve's).
+    fn point_f64(&self, id: &str) -> Option<Vec<f64>> {
+        let s = self.builder.system();
+        if let Some(e) = s.entity_by_id(id)
+            && let gcs_model::Geometry::Point { at: Some(at) } = &s.entity(e).geometry
+        {
+            return at.iter().map(|x| x.to_f64()).collect();
+        }
+        self.round_f64(id.strip_suffix(".center")?).map(|(c, _)| c)
+    }
+
+    /// A circle's or arc's sketch centre and radius in floats.
+    fn round_f64(&self, id: &str) -> Option<(Vec<f64>, f64)> {
+        let s = self.builder.system();
+        let (center, radius) = match &s.entity(s.entity_by_id(id)?).geometry {
+            gcs_model::Geometry::Circle { center, radius }
+            | gcs_model::Geometry::Arc { center, radius, .. } => {
+                (center.as_ref()?, radius.as_ref()?)
+            }
+            _ => return None,
+        };
+        Some((center.iter().map(|x| x.to_f64()).collect::<Option<Vec<f64>>>()?, radius.to_f64()?))
+    }
+
+    /// Two sketch points of a line or segment in floats.
+    fn line_f64(&self, line: &Target) -> Option<(Vec<f64>, Vec<f64>)> {
+        let s = self.builder.system();
+        match &s.entity(s.entity_by_id(&line.id)?).geometry {
+            gcs_model::Geometry::Segment { from, to } => {
+                Some((self.point_f64(&s.entity(*from).id)?, self.point_f64(&s.entity(*to).id)?))
+            }
+            gcs_model::Geometry::Line { at: Some([p, q]) } => Some((
+                p.iter().map(|x| x.to_f64()).collect::<Option<Vec<f64>>>()?,
+                q.iter().map(|x| x.to_f64()).collect::<Option<Vec<f64>>>()?,
+            )),
+            _ => None,
+        }
+    }
+
     fn x_axis(&mut self) -> Result<Target, String> {
         if self.builder.system().entity_by_id(X_AXIS).is_none() {
             let (zero, one) =
@@ -395,7 +498,11 @@ impl Lowering {
                 let v = value()?;
                 self.push(K::Distance, &c.id, &[&t[0], &t[1]], Some(abs(v)))
             }
-            (Kind::Distance, _) => unsupported("a distance to a circle or an arc"),
+            (Kind::Distance, [P | S | R, R] | [R, P | S]) => {
+                let v = abs(value()?);
+                self.distance_to_round(&c.id, t, v)
+            }
+            (Kind::Distance, _) => unsupported("a distance to a circle or an arc in 3D"),
             (Kind::Length, [S]) if t[0].shape == Some(Shape::Segment) => {
                 let (a, b) = self.ends(&t[0]);
                 self.push(K::Distance, &c.id, &[&a, &b], Some(abs(value()?)))

@@ -16,7 +16,7 @@ pub enum Rejection {
         /// The constraint's id.
         constraint: String,
     },
-    /// A distance between lines or planes that are not parallel.
+    /// A distance between lines or planes that are not parallel (circles not concentric).
     NotParallel {
         /// The constraint's id.
         constraint: String,
@@ -41,7 +41,7 @@ impl fmt::Display for Rejection {
             Rejection::NotParallel { constraint } => write!(
                 f,
                 "constraint \"{constraint}\": a distance between lines or planes that are not \
-                 parallel"
+                 parallel, or between circles that are not concentric"
             ),
             Rejection::Unplaceable { entity, constraints } => {
                 write!(f, "entity \"{entity}\" cannot be placed rationally under ")?;

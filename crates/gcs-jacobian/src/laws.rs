@@ -44,8 +44,8 @@ pub(crate) struct Law<F> {
     /// was asked for. The constructive placement solves `P = R M` for a rational orthogonal
     /// `R`, which is linear.
     pub(crate) split: Option<Split<F>>,
-    /// For a distance between lines or planes: values that all vanish exactly when they are
-    /// parallel — the condition under which the distance between 2D lines or planes is
+    /// For a distance between lines or planes (or circles): values that all vanish exactly
+    /// when they are parallel (concentric) — the condition under which the distance between 2D lines or planes is
     /// defined, and which picks the formula between 3D lines (variant 1: parallel).
     pub(crate) parallel: Option<Vec<Dual<F>>>,
 }
@@ -295,6 +295,13 @@ pub(crate) fn law<F: Field>(
             Law::exact(vec![b])
         }
         S::Fix(e) => Law::exact(fix_rows(l, e, sketch)),
+        S::Metric(Metric::DistanceCircleCircle(p, q)) => {
+            // Defined between concentric circles (as the distance between lines is between
+            // parallel ones): the difference of the radii.
+            let (c1, r1) = l.round(p);
+            let (c2, r2) = l.round(q);
+            Law::measure(&r1 - &r2).parallel_when(v::sub(&c1, &c2))
+        }
         S::Metric(Metric::LengthRatio(s, t)) => {
             // The ratio of the squared lengths: a monotone function of the ratio, rational.
             let (p1, q1) = l.segment(s);
@@ -512,6 +519,7 @@ pub(crate) fn measure(
         M::Radius(e) => length(l.round(e).1),
         M::DistanceX(a, b) => length(&l.point(b)[0] - &l.point(a)[0]),
         M::DistanceY(a, b) => length(&l.point(b)[1] - &l.point(a)[1]),
+        M::DistanceCircleCircle(p, q) => length(abs(&(&l.round(p).1 - &l.round(q).1))),
         M::LengthRatio(s, t) => {
             let (p1, q1) = l.segment(s);
             let (p2, q2) = l.segment(t);

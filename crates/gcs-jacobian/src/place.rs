@@ -478,6 +478,9 @@ fn place_with(
 /// The suffix of the id of the parallelism [`with_implied`] adds.
 const IMPLIED_PARALLEL: &str = "#parallel";
 
+/// The suffix of the id of the concentricity [`with_implied`] adds.
+const IMPLIED_CONCENTRIC: &str = "#concentric";
+
 /// The suffix of the id of the tangency of two circles [`with_implied`] adds.
 const IMPLIED_TANGENT: &str = "#tangent";
 
@@ -486,7 +489,8 @@ const IMPLIED_TANGENT: &str = "#tangent";
 /// leave it stuck; `None` when there is none (or an id is taken):
 ///
 /// - a `Parallel` for each distance between two lines, which holds only between parallel
-///   lines;
+///   lines, and a `Concentric` for each distance between two circles (only between
+///   concentric ones);
 /// - with `tangencies`, a `Tangent` of two circles (their centres at the sum or difference of
 ///   their radii) for each tangency of two circles or arcs at a point that is on both (an end
 ///   point of one, coincident with an end point of the other or on it, as a fillet's or a
@@ -506,6 +510,9 @@ fn with_implied(system: &System, tangencies: bool) -> Option<System> {
         .filter_map(|c| match c.signature {
             Signature::Metric(gcs_model::Metric::DistanceLineLine(a, b)) => {
                 Some((format!("{}{IMPLIED_PARALLEL}", c.id), ConstraintKind::Parallel, a, b))
+            }
+            Signature::Metric(gcs_model::Metric::DistanceCircleCircle(a, b)) => {
+                Some((format!("{}{IMPLIED_CONCENTRIC}", c.id), ConstraintKind::Concentric, a, b))
             }
             _ => None,
         })
@@ -570,6 +577,11 @@ fn with_implied(system: &System, tangencies: bool) -> Option<System> {
     }
     let mut b = SystemBuilder::from_system(system.clone());
     for (id, kind, x, y) in added {
+        // (An id already taken is a constraint of the model's own of that name: the importer
+        // names a distance's concentricity so; the implied copy is then not needed.)
+        if system.constraint_by_id(&id).is_some() {
+            continue;
+        }
         let args = [system.entity(x).id.as_str(), system.entity(y).id.as_str()];
         b.constraint(kind, &id, &args, None).ok()?;
     }

@@ -54,6 +54,8 @@ pub enum Metric {
     DistanceY(EntityIdx, EntityIdx),
     /// The length of the first segment over the length of the second.
     LengthRatio(EntityIdx, EntityIdx),
+    /// The distance between two concentric circles: the difference of their radii (2D).
+    DistanceCircleCircle(EntityIdx, EntityIdx),
 }
 
 impl Metric {
@@ -65,7 +67,8 @@ impl Metric {
             | M::DistancePointLine { .. }
             | M::DistancePointPlane { .. }
             | M::DistanceLineLine(..)
-            | M::DistancePlanePlane(..) => ConstraintKind::Distance,
+            | M::DistancePlanePlane(..)
+            | M::DistanceCircleCircle(..) => ConstraintKind::Distance,
             M::AngleLineLine(..) | M::AnglePlanePlane(..) | M::AngleLinePlane { .. } => {
                 ConstraintKind::Angle
             }
@@ -87,7 +90,8 @@ impl Metric {
             | M::AnglePlanePlane(a, b)
             | M::DistanceX(a, b)
             | M::DistanceY(a, b)
-            | M::LengthRatio(a, b) => vec![a, b],
+            | M::LengthRatio(a, b)
+            | M::DistanceCircleCircle(a, b) => vec![a, b],
             M::DistancePointLine { point, line: other }
             | M::DistancePointPlane { point, plane: other } => vec![point, other],
             M::AngleLinePlane { line, plane } => vec![line, plane],
@@ -431,7 +435,8 @@ impl Signature {
                 .ok_or("two points"),
             K::Distance => {
                 let expected = if d2 {
-                    "point–point, point–line or line–line (parallel lines)"
+                    "point–point, point–line, line–line (parallel lines) or circle–circle \
+                     (concentric circles)"
                 } else {
                     "point–point, point–line, point–plane, line–line or plane–plane (parallel \
                      planes)"
@@ -446,6 +451,8 @@ impl Signature {
                     Ok((S::Metric(M::DistanceLineLine(a, b)), 1))
                 } else if let Some((a, b)) = pair(C::Plane, C::Plane) {
                     Ok((S::Metric(M::DistancePlanePlane(a, b)), 1))
+                } else if let Some((a, b)) = pair(C::Circle, C::Circle) {
+                    Ok((S::Metric(M::DistanceCircleCircle(a, b)), 1))
                 } else {
                     Err(expected)
                 }

@@ -446,6 +446,7 @@ impl Facts {
                 | S::Metric(Metric::DistanceX(..))
                 | S::Metric(Metric::DistanceY(..))
                 | S::Metric(Metric::LengthRatio(..))
+                | S::Metric(Metric::DistanceCircleCircle(..))
                 | S::EqualAngle { .. }
                 | S::EqualDistance(..)
                 | S::Fix(_) => {}
