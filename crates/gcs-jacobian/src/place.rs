@@ -486,7 +486,7 @@ const IMPLIED_TANGENT: &str = "#tangent";
 
 /// The 2D system with, appended (so indices of the system's own constraints are kept), the
 /// constraints that follow from its own and that the placement can use where the originals
-/// leave it stuck; `None` when there is none (or an id is taken):
+/// leave it stuck (one whose id the model holds already is left out); `None` when there is none:
 ///
 /// - a `Parallel` for each distance between two lines, which holds only between parallel
 ///   lines, and a `Concentric` for each distance between two circles (only between
