@@ -62,6 +62,12 @@ const CASES: &[(&[u8], &str)] = &[
     (BOTH, r#"LengthRatio(id: "c", a: "pq", b: "rs")"#),
     (TWO, r#"EqualAngle(id: "c", a: "pq", b: "l", c: "rs", d: "m")"#),
     (TWO, r#"EqualAngle(id: "c", a: "pq", b: "pr", c: "pr", d: "rs")"#),
+    // At a right angle both branches of an equal angle hold: the analysis keeps one, regular.
+    (
+        TWO,
+        r#"Perpendicular(id: "c0", a: "pq", b: "pr"),
+           EqualAngle(id: "c", a: "pq", b: "pr", c: "rs", d: "l")"#,
+    ),
     (TWO, r#"EqualDistance(id: "c", a: "p", b: "q", c: "r", d: "s")"#),
     (TWO, r#"EqualDistance(id: "c", a: "p", b: "q", c: "r", d: "l")"#),
     (TWO, r#"EqualDistance(id: "c", a: "l", b: "p", c: "q", d: "r")"#),
@@ -310,6 +316,12 @@ fn equalities_and_ratios_are_redundant_where_implied() {
         (
             r#"Parallel(id: "x1", a: "pq", b: "l"), Parallel(id: "x2", a: "pr", b: "m"),
                EqualAngle(id: "c", a: "pq", b: "pr", c: "l", d: "m")"#,
+            vec!["x1", "x2"],
+        ),
+        // Two right angles are equal angles.
+        (
+            r#"Perpendicular(id: "x1", a: "pq", b: "pr"), Perpendicular(id: "x2", a: "rs", b: "l"),
+               EqualAngle(id: "c", a: "pq", b: "pr", c: "rs", d: "l")"#,
             vec!["x1", "x2"],
         ),
         // Two dimensioned lengths fix their ratio and the equality of two distances.

@@ -554,13 +554,6 @@ impl Lowering {
                     ],
                 )
             }
-            (Kind::EqualAngle, [S, S, S, S])
-                if t[..2].iter().any(|x| t[2..].iter().any(|y| y.id == x.id)) =>
-            {
-                // (The model takes it, but its witness needs the bisector of two directions,
-                // which the constructive placement cannot build yet: analysed only in float.)
-                unsupported("equal angles with one line in both (a bisector)")
-            }
             (Kind::EqualAngle, [S, S, S, S]) => {
                 self.push(K::EqualAngle, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
             }

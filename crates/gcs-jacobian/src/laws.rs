@@ -87,7 +87,9 @@ impl<F> Law<F> {
 
 /// The equations of a constraint with signature `sig` in variant `variant` at the
 /// configuration `l` (see [`Law`]); `sketch` gives sketch coordinates for `Fix`; the
-/// difference-of-squares form is computed only when `want_split`.
+/// difference-of-squares form is computed only when `want_split` — the constructive
+/// placement's form, which is also branch-free where a constraint has such a form (an equal
+/// angle: the product of its two branches).
 pub(crate) fn law<F: Field>(
     sig: Signature,
     variant: usize,
@@ -309,15 +311,24 @@ pub(crate) fn law<F: Field>(
             Law::measure(Dual::ratio(&v::norm2(&v::sub(&q1, &p1)), &v::norm2(&v::sub(&q2, &p2))))
         }
         S::EqualAngle { a, b, c, d } => {
-            // With θ₁ from a to b and θ₂ from c to d (normals turn as the lines do):
-            // sin(θ₁ − θ₂)·sin(θ₁ + θ₂) = 0, the same angle modulo 180° or opposite ones —
-            // equal angles between the undirected lines, whichever of the two supplementary
-            // angles is meant, with no branch to choose (an implied equality holds on either).
-            // A difference of squares: (sin θ₁ cos θ₂)² − (cos θ₁ sin θ₂)².
+            // With θ₁ from a to b and θ₂ from c to d (normals turn as the lines do): the same
+            // angle modulo 180°, sin(θ₁ − θ₂) = 0 (variant 0), or opposite ones,
+            // sin(θ₁ + θ₂) = 0 (variant 1): equal angles between the undirected lines, either
+            // of the two supplementary angles. For the placement (`want_split`), both at once
+            // and with no branch to choose, so that an equality other constraints imply holds
+            // whichever the witness lands on: their product, a difference of squares,
+            // (sin θ₁ cos θ₂)² − (cos θ₁ sin θ₂)² (singular where both vanish — right angles,
+            // parallel lines —, which is why the analysis keeps the branch).
             let (na, nb, nc, nd) = (l.normal2(a), l.normal2(b), l.normal2(c), l.normal2(d));
             let x = &v::cross2(&na, &nb) * &v::dot(&nc, &nd);
             let y = &v::dot(&na, &nb) * &v::cross2(&nc, &nd);
-            Law::exact(vec![&(&x * &x) - &(&y * &y)]).split(want_split, || (vec![x], vec![y]))
+            if want_split {
+                Law::exact(vec![&(&x * &x) - &(&y * &y)])
+                    .variants(2)
+                    .split(true, || (vec![x], vec![y]))
+            } else {
+                Law::exact(vec![if variant == 0 { &x - &y } else { &x + &y }]).variants(2)
+            }
         }
         S::EqualDistance(p, q) => {
             // d₁² = n₁/m₁ and d₂² = n₂/m₂: n₁ m₂ − n₂ m₁ = 0, a difference of squares (a
@@ -353,13 +364,13 @@ pub(crate) fn law<F: Field>(
 /// The degree in lengths of the residuals of a parameter-free constraint (how they grow when
 /// the model is scaled, the coordinates of lines scaling as the segments' do): 2 for most (a
 /// point on a circle, an equal length), more for the equalities, whose polynomials are
-/// products — 8 for equal angles, 2 more per point–line distance for equal distances. What a
+/// products — 4 for equal angles, 2 more per point–line distance for equal distances. What a
 /// residual is measured against (the model's size to this power) in the projection and the
 /// solver.
 pub fn residual_degree(sig: Signature) -> i32 {
     use Signature as S;
     match sig {
-        S::EqualAngle { .. } => 8,
+        S::EqualAngle { .. } => 4,
         S::EqualDistance(p, q) => {
             2 + 2 * [p, q].iter().filter(|g| matches!(g, Gap::PointLine { .. })).count() as i32
         }

@@ -1449,19 +1449,7 @@ impl Placer<'_> {
         }
         // Exact check of every ready equation (a solution of linear equations checked linear
         // satisfies them by construction).
-        let ok = linear_only
-            || ready.iter().all(|(ci, known)| {
-                let local =
-                    Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords)
-                        .with_lines(known.clone());
-                let none = |_: EntityIdx| None;
-                let sketch = |b: EntityIdx| self.sketch_of(*ci, b);
-                let c = self.system.constraint(*ci);
-                let sketch: &laws::SketchFn<'_, Q> =
-                    if c.kind == ConstraintKind::Fix { &sketch } else { &none };
-                let law = laws::law(c.signature, self.variant[ci.index()], &local, sketch, false);
-                law.rows.iter().all(|r| r.value.is_zero())
-            });
+        let ok = linear_only || self.ready_values(ready).iter().all(Q::is_zero);
         if !ok {
             for (col, v) in cols.iter().zip(old) {
                 self.coords[*col] = v;
@@ -1469,6 +1457,24 @@ impl Placer<'_> {
             return None;
         }
         Some(freedom)
+    }
+
+    /// The values of every row of the ready constraints at the current coordinates, in the
+    /// placement's form of the laws (branch-free where there is one: an equal angle).
+    fn ready_values(&self, ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)]) -> Vec<Q> {
+        let mut out = Vec::new();
+        for (ci, known) in ready {
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords)
+                .with_lines(known.clone());
+            let none = |_: EntityIdx| None;
+            let sketch = |b: EntityIdx| self.sketch_of(*ci, b);
+            let c = self.system.constraint(*ci);
+            let sketch: &laws::SketchFn<'_, Q> =
+                if c.kind == ConstraintKind::Fix { &sketch } else { &none };
+            let law = laws::law(c.signature, self.variant[ci.index()], &local, sketch, true);
+            out.extend(law.rows.into_iter().map(|r| r.value));
+        }
+        out
     }
 
     /// The law of `ci` (with its difference-of-squares form) with the group being placed (its
