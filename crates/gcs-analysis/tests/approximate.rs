@@ -196,3 +196,44 @@ fn an_equilateral_triangle_takes_the_next_prime() {
         assert!(a.decomposition.is_some());
     }
 }
+
+/// An equilateral triangle inscribed in a circle with two vertices on given lines (kunda1's
+/// sketch in the FreeCAD sample, its triangle alone): placed one vertex at a time, the last
+/// vertex must lie on the circle *and* at the equal distances, which the earlier free choices
+/// (the first vertex on its line) decide; it closes only as a loop, solved as a polynomial system
+/// modulo the prime (issue 10.4), and only modulo a prime where 3 is a square.
+#[test]
+fn an_inscribed_triangle_closes_as_a_polynomial_system() {
+    const INSCRIBED: &str = r#"System(dim: 2,
+      entities: [Point(id: "o", at: [0, 0]), Point(id: "u", at: [17.624787723, 80.607874997]),
+        Point(id: "w", at: [-60.99607363, 55.567451403]),
+        Segment(id: "d1", from: "o", to: "u"), Segment(id: "d2", from: "o", to: "w"),
+        Point(id: "a", at: [-16.404000828, -75.024543212]),
+        Point(id: "b", at: [37.435983138, -34.104198023]),
+        Point(id: "c", at: [-24.92206731, -7.937576764]),
+        Segment(id: "ab", from: "a", to: "b"), Segment(id: "bc", from: "b", to: "c"),
+        Segment(id: "ca", from: "c", to: "a"),
+        Circle(id: "k", center: [-1.296695, -39.022106], radius: 39.043644484)],
+      constraints: [Fix(id: "fo", a: "o"), Fix(id: "fu", a: "u"), Fix(id: "fw", a: "w"),
+        EqualLength(id: "e1", a: "ab", b: "bc"), EqualLength(id: "e2", a: "ab", b: "ca"),
+        Incident(id: "ia", a: "a", b: "k"), Incident(id: "ib", a: "b", b: "k"),
+        Incident(id: "ic", a: "c", b: "k"),
+        Incident(id: "la", a: "a", b: "d1"), Incident(id: "lb", a: "b", b: "d2"),
+        DistanceX(id: "cx", a: "o", b: "k.center", value: -1.296695),
+        DistanceY(id: "cy", a: "o", b: "k.center", value: -39.022106)])"#;
+    let s = System::from_ron_str(INSCRIBED, None).unwrap();
+    let float = analyze(
+        &s,
+        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+    )
+    .unwrap();
+    assert!(float.well_constrained());
+    for backend in [Backend::Exact, Backend::ModP] {
+        let a = analyze(&s, &AnalysisOptions { backend, ..Default::default() })
+            .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
+        assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
+        assert_eq!(a.witness.modulus, Some(gcs_rank::WITNESS_PRIMES[1]), "{backend:?}");
+        assert!(a.well_constrained(), "{backend:?}");
+        assert_eq!((a.rank, a.dof), (float.rank, float.dof), "{backend:?}");
+    }
+}

@@ -48,6 +48,7 @@ mod layout;
 pub mod motions;
 mod place;
 pub mod plan;
+mod polysolve;
 mod project;
 mod qla;
 mod repr;

@@ -41,6 +41,11 @@
 //!   its tangencies; a line tangent to two circles is placed before the segment's points.
 //! - Every candidate root of a quadratic is tried, not only the one nearest the preference,
 //!   and every side of a factorised quadric (a few combinations), the preference's first.
+//! - *Loops as polynomial systems* (modulo the prime only): a failing group is grown by the
+//!   loop from the last free choice to it ([`Placer::chain`]), and a grown group the
+//!   construction cannot place is solved as a polynomial system ([`Placer::place_algebraic`],
+//!   [`crate::polysolve`]), at a random point of its solutions, the folded special positions
+//!   ([`Placer::apart_pairs`]) excluded.
 //!
 //! None of this changes what a witness is: every choice is a random point of the solution set
 //! of the constraints imposed at that step, so the witness is a generic point of the
@@ -64,6 +69,10 @@ use crate::qla::{self, Affine, Num, Q};
 use crate::repr::{Draw, Snap};
 use crate::views::{KnownLine, Local};
 
+/// The work (term operations, about a second's worth) of the polynomial solves of loops in a
+/// placement modulo a prime ([`PlaceOptions::algebra_budget`] holds what is left).
+pub(crate) const ALGEBRA_WORK: u64 = crate::polysolve::MAX_WORK;
+
 /// How to place.
 #[derive(Clone, Debug)]
 pub(crate) struct PlaceOptions {
@@ -76,6 +85,10 @@ pub(crate) struct PlaceOptions {
     /// that need an irrational coordinate over ℚ are placed; the sides (tangency branches) are
     /// still the preference's, the rest is random.
     pub(crate) modular: bool,
+    /// Modulo the prime: the work left to the polynomial solves of loops
+    /// ([`crate::polysolve`]), shared by every placement that holds it (those of one witness
+    /// search), so that a sketch no solve closes costs a bounded time more.
+    pub(crate) algebra_budget: std::rc::Rc<std::cell::Cell<u64>>,
 }
 
 /// Why a placement failed: the entity that could not be placed and the constraints binding it
@@ -96,6 +109,9 @@ struct RunFailure {
     group: EntityIdx,
     /// The suspects, most recently placed first (an entity of each group).
     suspects: Vec<EntityIdx>,
+    /// Modulo the prime: the most recent suspect and the groups placed from it that the group
+    /// depends on (an entity of each), to be placed with it as one polynomial system.
+    chain: Vec<EntityIdx>,
     /// Whether the group failed for want of a square root (not for constraints that
     /// contradict each other): modulo the prime, other random choices may have one.
     no_root: bool,
@@ -109,6 +125,9 @@ struct Learned {
     parent: Vec<u32>,
     /// `(a, b)`: the group of `a` is placed before that of `b`.
     before: Vec<(EntityIdx, EntityIdx)>,
+    /// Whether the group (by root) was grown from failures (beyond coincident points): only
+    /// those are worth a polynomial solve ([`Placer::place_algebraic`]).
+    grown: Vec<bool>,
 }
 
 impl Learned {
@@ -117,7 +136,8 @@ impl Learned {
     /// segment it joins).
     fn new(system: &System) -> Learned {
         let n = system.entities().len();
-        let mut learned = Learned { parent: (0..n as u32).collect(), before: Vec::new() };
+        let mut learned =
+            Learned { parent: (0..n as u32).collect(), before: Vec::new(), grown: vec![false; n] };
         for c in system.constraints() {
             if let Signature::CoincidentPoints(a, b) = c.signature {
                 let (ra, rb) = (learned.find(a), learned.find(b));
@@ -144,6 +164,40 @@ impl Learned {
     fn learn(&mut self, f: &RunFailure, layout: &Layout) -> bool {
         let groupable = |e: EntityIdx| layout.repr(e).is_some_and(|r| !r.homogeneous());
         let g = self.find(f.group);
+        // Modulo the prime, the loop from the last free choice to the failure is placed at once,
+        // as a polynomial system, when it is small enough.
+        let chain: Vec<EntityIdx> =
+            f.chain.iter().map(|e| self.find(*e)).filter(|e| *e != g).collect();
+        if !chain.is_empty() && groupable(g) && chain.iter().all(|e| groupable(*e)) {
+            let mut merged = self.parent.clone();
+            for e in &chain {
+                merged[e.index()] = g.0;
+            }
+            let members: usize = (0..merged.len())
+                .filter(|&i| {
+                    let mut x = i as u32;
+                    while merged[x as usize] != x {
+                        x = merged[x as usize];
+                    }
+                    x == g.0
+                })
+                .map(|i| layout.columns(EntityIdx(i as u32)).len())
+                .sum();
+            if members < crate::polysolve::MAX_VARS {
+                self.parent = merged;
+                self.grown[g.index()] = true;
+                let (parent, before) = (&self.parent, &mut self.before);
+                let find = |e: EntityIdx| {
+                    let mut x = e.0;
+                    while parent[x as usize] != x {
+                        x = parent[x as usize];
+                    }
+                    x
+                };
+                before.retain(|(a, b)| find(*a) != find(*b));
+                return true;
+            }
+        }
         for &s in &f.suspects {
             let s = self.find(s);
             if s == g {
@@ -157,6 +211,7 @@ impl Learned {
             }
             if groupable(g) && groupable(s) {
                 self.parent[s.index()] = g.0;
+                self.grown[g.index()] = true;
                 let (parent, before) = (&self.parent, &mut self.before);
                 let find = |e: EntityIdx| {
                     let mut x = e.0;
@@ -336,6 +391,10 @@ struct Placer<'a> {
     members: Vec<Vec<EntityIdx>>,
     /// The group being placed.
     current: Vec<EntityIdx>,
+    /// Whether each group (by root) was grown from failures ([`Learned::grown`]).
+    grown: Vec<bool>,
+    /// The class of each entity under `Coincident` (an entity of it).
+    coincident: &'a [EntityIdx],
     /// For each point, the other endpoints of the segments it is an endpoint of.
     partners: Vec<Vec<EntityIdx>>,
     /// The direction classes of 2D lines, whether each class's direction is known (by root),
@@ -352,6 +411,8 @@ struct Placer<'a> {
     determiners: Vec<Vec<EntityIdx>>,
     /// Whether the last placement of a group failed for want of a square root.
     no_root: bool,
+    /// The work left to the polynomial solves of the whole placement ([`Self::place_algebraic`]).
+    algebra_budget: u64,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -642,6 +703,10 @@ fn place_in(
         }
     }
     let directions = Directions::new(system);
+    let coincident: Vec<EntityIdx> = {
+        let classes = Learned::new(system);
+        system.entity_indices().map(|e| classes.find(e)).collect()
+    };
     let mut lines_of = vec![Vec::new(); nent];
     if system.dim() == Dim::Two {
         for l in system.entity_indices() {
@@ -697,6 +762,8 @@ fn place_in(
             group,
             members,
             current: Vec::new(),
+            grown: learned.grown.clone(),
+            coincident: &coincident,
             partners: partners.clone(),
             directions: &directions,
             class_known: directions.anchor.iter().map(Option::is_some).collect(),
@@ -706,6 +773,7 @@ fn place_in(
             freedom: vec![0; nent],
             determiners: vec![Vec::new(); nent],
             no_root: false,
+            algebra_budget: options.algebra_budget.get(),
         };
         p.choose_variants();
         if options.modular {
@@ -716,7 +784,9 @@ fn place_in(
             p.modular = true;
         }
         run += 1;
-        let f = match p.run(&tiebreak) {
+        let result = p.run(&tiebreak);
+        options.algebra_budget.set(p.algebra_budget);
+        let f = match result {
             Ok(()) => {
                 return Ok(p.coords);
             }
@@ -1057,6 +1127,48 @@ impl Placer<'_> {
         free
     }
 
+    /// The placed groups that group `g`'s ready constraints depend on (directly or through
+    /// the groups that determined them) and that depend on the suspect `s`, with `s`: the
+    /// loop from the free choice to the failure.
+    fn chain(&self, g: EntityIdx, ready: &[ConstraintIdx], s: EntityIdx) -> Vec<EntityIdx> {
+        let mut ancestors: Vec<EntityIdx> = Vec::new();
+        let mut queue: Vec<EntityIdx> = Vec::new();
+        for c in ready {
+            for b in &self.bases[c.index()] {
+                let h = self.group[b.index()];
+                if h != g && self.placed[b.index()] && !ancestors.contains(&h) {
+                    ancestors.push(h);
+                    queue.push(h);
+                }
+            }
+        }
+        while let Some(h) = queue.pop() {
+            for d in &self.determiners[h.index()] {
+                if !ancestors.contains(d) {
+                    ancestors.push(*d);
+                    queue.push(*d);
+                }
+            }
+        }
+        let reaches = |h: EntityIdx| {
+            let mut seen = vec![h];
+            let mut queue = vec![h];
+            while let Some(x) = queue.pop() {
+                if x == s {
+                    return true;
+                }
+                for d in &self.determiners[x.index()] {
+                    if !seen.contains(d) {
+                        seen.push(*d);
+                        queue.push(*d);
+                    }
+                }
+            }
+            false
+        };
+        ancestors.into_iter().filter(|h| reaches(*h)).collect()
+    }
+
     fn run(&mut self, tiebreak: &[u64]) -> Result<(), RunFailure> {
         let system = self.system;
         let nent = system.entities().len();
@@ -1155,11 +1267,16 @@ impl Placer<'_> {
                 failed_at[g.index()] = Some(s);
                 let constraints: Vec<ConstraintIdx> = ready.iter().map(|(c, _)| *c).collect();
                 let suspects = self.suspects(g, &constraints);
+                let chain = match suspects.first() {
+                    Some(s) if self.modular => self.chain(g, &constraints, *s),
+                    _ => Vec::new(),
+                };
                 let entity = self.members[g.index()].first().copied().unwrap_or(g);
                 failures.push(RunFailure {
                     public: PlaceFailure { entity, constraints, no_root: self.no_root },
                     group: g,
                     suspects,
+                    chain,
                     no_root: self.no_root,
                 });
             }
@@ -1183,6 +1300,7 @@ impl Placer<'_> {
                 },
                 group: g,
                 suspects: Vec::new(),
+                chain: Vec::new(),
                 no_root: false,
             }
         };
@@ -1251,61 +1369,229 @@ impl Placer<'_> {
     }
 
     /// Whether coordinates `x` of the group being placed describe entities of their kinds (no
-    /// line without direction, no circle of radius zero) and keep every segment's two points
-    /// apart.
+    /// line without direction, no circle of radius zero) and keep apart the points
+    /// [`Self::apart_pairs`] names.
     fn acceptable(&self, x: &[Q]) -> bool {
         let mut offset = 0;
-        let mut at: Vec<(EntityIdx, &[Q])> = Vec::with_capacity(self.current.len());
         for &m in &self.current {
             let k = self.layout.columns(m).len();
             let Some(slice) = x.get(offset..offset + k) else { return false };
             if self.layout.repr(m).is_some_and(|r| r.degenerate(slice)) {
                 return false;
             }
-            at.push((m, slice));
             offset += k;
         }
-        // A point does not land on a placed point that shares a constraint with it and that
-        // the drawing has apart: that is a special position of the constraints (an equal
-        // chord folded back onto the vertex before it, which modulo p, where no root is
-        // nearer the drawing than the other, is taken half the time), not a generic point.
-        for (m, slice) in &at {
-            if self.system.entity(*m).kind() != gcs_model::EntityKind::Point {
+        self.apart_pairs().iter().all(|(a, b)| self.coords_at(x, *a) != self.coords_at(x, *b))
+    }
+
+    /// The coordinates of `e`: from `x` when it is in the group being placed, else its own.
+    fn coords_at<'x>(&'x self, x: &'x [Q], e: EntityIdx) -> &'x [Q] {
+        let mut offset = 0;
+        for &m in &self.current {
+            let k = self.layout.columns(m).len();
+            if m == e {
+                return x.get(offset..offset + k).unwrap_or(&[]);
+            }
+            offset += k;
+        }
+        &self.coords[self.layout.columns(e)]
+    }
+
+    /// The pairs of points, one in the group being placed and the other in it too or placed,
+    /// that a generic placement keeps apart: the two end points of a segment, and two points
+    /// that share a constraint and that the drawing has apart — their landing on each other is
+    /// a special position of the constraints (an equal chord folded back onto the vertex before
+    /// it, which modulo p, where no root is nearer the drawing than the other, is taken half
+    /// the time), not a generic point.
+    fn apart_pairs(&self) -> Vec<(EntityIdx, EntityIdx)> {
+        let point = |e: EntityIdx| self.system.entity(e).kind() == gcs_model::EntityKind::Point;
+        let in_group = |e: EntityIdx| self.current.contains(&e);
+        let mut out: Vec<(EntityIdx, EntityIdx)> = Vec::new();
+        let mut push = |a: EntityIdx, b: EntityIdx| {
+            if !out.contains(&(a, b)) && !out.contains(&(b, a)) {
+                out.push((a, b));
+            }
+        };
+        for &m in &self.current {
+            if !point(m) {
                 continue;
             }
-            let own = self.layout.columns(*m);
+            for &o in &self.partners[m.index()] {
+                if in_group(o) || self.placed[o.index()] {
+                    push(m, o);
+                }
+            }
+            let own = self.layout.columns(m);
             for ci in &self.adjacent[m.index()] {
-                for o in &self.bases[ci.index()] {
+                for &o in &self.bases[ci.index()] {
                     if o == m
-                        || !self.placed[o.index()]
-                        || self.group[o.index()] == self.group[m.index()]
-                        || self.system.entity(*o).kind() != gcs_model::EntityKind::Point
+                        || !point(o)
+                        || !(in_group(o) || self.placed[o.index()])
+                        || self.coincident[o.index()] == self.coincident[m.index()]
                     {
                         continue;
                     }
-                    let theirs = self.layout.columns(*o);
-                    if self.coords[theirs.clone()] == **slice
-                        && self.pref[theirs] != self.pref[own.clone()]
-                    {
-                        return false;
+                    if self.pref[self.layout.columns(o)] != self.pref[own.clone()] {
+                        push(m, o);
                     }
                 }
             }
         }
-        at.iter().all(|(m, slice)| {
-            self.partners[m.index()].iter().all(|o| {
-                if let Some((_, other)) = at.iter().find(|(x, _)| x == o) {
-                    other != slice
-                } else {
-                    !self.placed[o.index()] || self.coords[self.layout.columns(*o)] != **slice
-                }
-            })
-        })
+        out
     }
 
     /// Places group `g` under its ready constraints; on success writes its coordinates and
-    /// returns the dimension of the solutions it was chosen from.
+    /// returns the dimension of the solutions it was chosen from. Modulo the prime, a group
+    /// the construction cannot place is solved as a polynomial system ([`Self::place_algebraic`]).
     fn place_group(
+        &mut self,
+        g: EntityIdx,
+        ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)],
+    ) -> Option<usize> {
+        let constructed = self.place_constructively(g, ready);
+        if constructed.is_some() || !self.modular || !self.grown[g.index()] {
+            return constructed;
+        }
+        self.place_algebraic(ready)
+    }
+
+    /// Places the group being placed ([`Self::current`]) at a random point of the solutions of
+    /// its ready equations modulo the prime, found by elimination ([`crate::polysolve`]): the
+    /// equations are the laws in the placement's form evaluated on polynomials in the group's
+    /// coordinates. The point is checked as every placement is.
+    fn place_algebraic(&mut self, ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)]) -> Option<usize> {
+        use crate::polysolve::{self, NoPoint, Poly};
+        use gcs_rank::Field;
+        type P = Poly<gcs_rank::ModQ>;
+        let cols = self.current_columns();
+        let n = cols.len();
+        if n == 0 || n > polysolve::MAX_VARS || ready.is_empty() {
+            return None;
+        }
+        let constant = |q: &Q| Poly::constant(q.modular());
+        // (Only the columns the ready constraints read.)
+        let mut coords: Vec<P> = vec![P::zero(); self.coords.len()];
+        let pairs = self.apart_pairs();
+        let read = ready.iter().flat_map(|(ci, _)| self.bases[ci.index()].iter().copied());
+        for b in read.chain(pairs.iter().flat_map(|(a, b)| [*a, *b])) {
+            for c in self.layout.columns(b) {
+                coords[c] = constant(&self.coords[c]);
+            }
+        }
+        for (i, c) in cols.iter().enumerate() {
+            coords[*c] = Poly::var(i);
+        }
+        let mut equations = Vec::new();
+        for (ci, known) in ready {
+            let known: Vec<KnownLine<Poly<gcs_rank::ModQ>>> = known
+                .iter()
+                .map(|k| KnownLine {
+                    line: k.line,
+                    normal: [constant(&k.normal[0]), constant(&k.normal[1])],
+                    anchor: k.anchor,
+                })
+                .collect();
+            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &coords)
+                .with_lines(known);
+            let c = self.system.constraint(*ci);
+            let none = |_: EntityIdx| None;
+            let sketch = |b: EntityIdx| {
+                self.sketch_of(*ci, b).map(|v| v.iter().map(constant).collect::<Vec<_>>())
+            };
+            let sketch: &laws::SketchFn<'_, Poly<gcs_rank::ModQ>> =
+                if c.kind == ConstraintKind::Fix { &sketch } else { &none };
+            let law = laws::law(c.signature, self.variant[ci.index()], &local, sketch, true);
+            equations.extend(law.rows.into_iter().map(|r| r.value));
+        }
+        if let [e] = self.current[..]
+            && let Some(repr) = self.layout.repr(e)
+        {
+            // Quadratic internal relations (the Plücker relation of a 3D line).
+            for (p, m) in repr.internal_quadrics() {
+                let square = |rows: &[Vec<i64>]| {
+                    let mut sum = P::zero();
+                    for row in rows {
+                        let mut l = P::zero();
+                        for (i, a) in row.iter().enumerate() {
+                            l = l.add(&P::var(i).mul(&P::from_i64(*a)));
+                        }
+                        sum = sum.add(&l.mul(&l));
+                    }
+                    sum
+                };
+                equations.push(square(&p).sub(&square(&m)));
+            }
+        }
+        // Points kept apart whose coincidence a solution shows are kept apart in the next round
+        // (`z · Π ℓ = 1`, `ℓ` a random linear form in their difference): the folded
+        // constructions form parts of the solutions as large as the proper one, or larger.
+        let mut saturated: Vec<usize> = Vec::new();
+        let mut rng = SplitMix64::new(self.rng.next_u64());
+        let old: Vec<Q> = cols.iter().map(|c| self.coords[*c].clone()).collect();
+        for _round in 0..4 {
+            let mut system = equations.clone();
+            let mut nv = n;
+            if !saturated.is_empty() && n < polysolve::MAX_VARS {
+                let mut product = P::one();
+                for &k in &saturated {
+                    let (a, b) = pairs[k];
+                    let mut l = P::zero();
+                    for (ca, cb) in self.layout.columns(a).zip(self.layout.columns(b)) {
+                        let r = P::constant(gcs_rank::ModQ::new(rng.next_u64()));
+                        l = l.add(&coords[ca].sub(&coords[cb]).mul(&r));
+                    }
+                    product = product.mul(&l);
+                }
+                system.push(P::var(n).mul(&product).sub(&P::one()));
+                nv = n + 1;
+            }
+            let res = polysolve::points(
+                &system,
+                nv,
+                16,
+                &mut || rng.next_u64(),
+                &mut self.algebra_budget,
+            );
+            let (points, cuts) = match res {
+                Ok(found) => found,
+                Err(why) => {
+                    self.no_root |= why == NoPoint::NoRoot;
+                    return None;
+                }
+            };
+            let mut more = false;
+            for point in points {
+                let x: Vec<Q> = point.into_iter().take(n).map(Num::P).collect();
+                if self.acceptable(&x) {
+                    for (col, v) in cols.iter().zip(&x) {
+                        self.coords[*col] = v.clone();
+                    }
+                    if self.ready_values(ready).iter().all(Q::is_zero) {
+                        return Some(cuts);
+                    }
+                    for (col, v) in cols.iter().zip(&old) {
+                        self.coords[*col] = v.clone();
+                    }
+                }
+                for (k, (a, b)) in pairs.iter().enumerate() {
+                    if !saturated.contains(&k) && self.coords_at(&x, *a) == self.coords_at(&x, *b) {
+                        saturated.push(k);
+                        more = true;
+                    }
+                }
+            }
+            // (A product of many forms makes the system too large to solve.)
+            if !more || saturated.len() > 8 {
+                break;
+            }
+        }
+        // (Every point was degenerate: another random cut may give a proper one.)
+        self.no_root = true;
+        None
+    }
+
+    /// [`Self::place_group`] by construction: linear equations and quadrics `|P|² = |M|²`.
+    fn place_constructively(
         &mut self,
         g: EntityIdx,
         ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)],

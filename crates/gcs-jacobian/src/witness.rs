@@ -243,6 +243,8 @@ fn modular(
         if !needs_root {
             break;
         }
+        // The polynomial solves of loops get a few of the largest in all, modulo each prime.
+        let algebra_budget = std::rc::Rc::new(std::cell::Cell::new(2 * place::ALGEBRA_WORK));
         needs_root = false;
         let found = gcs_rank::with_modulus(q, || -> Result<_, JacobianError> {
             let mut best: Option<(Vec<u64>, Plan, usize)> = None;
@@ -254,6 +256,7 @@ fn modular(
                     seed: options.seed.wrapping_mul(0x51ED_270B).wrapping_add(round as u64 + 1),
                     noise: 1e-3,
                     modular: true,
+                    algebra_budget: algebra_budget.clone(),
                 };
                 let coords = match place::place(system, layout, pref, scale, &opts) {
                     Ok(coords) => coords,
@@ -344,6 +347,7 @@ pub fn find_witness(
             seed: options.seed.wrapping_mul(0x9E37_79B9).wrapping_add(round as u64 + 1),
             noise: 1e-3,
             modular: false,
+            algebra_budget: std::rc::Rc::new(std::cell::Cell::new(0)),
         };
         match place::place(system, layout, &pref_q, scale, &opts) {
             Ok(coords) => match plan(
