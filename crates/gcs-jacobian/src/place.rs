@@ -130,6 +130,14 @@ struct Learned {
     grown: Vec<bool>,
 }
 
+/// The root of `x` in the union-find `parent`.
+fn root(parent: &[u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        x = parent[x as usize];
+    }
+    x
+}
+
 impl Learned {
     /// Coincident points start in one group: they are one point, and a constraint on any of
     /// them places it (the end of a fillet's arc is placed by the tangency at the end of the
@@ -152,11 +160,18 @@ impl Learned {
     }
 
     fn find(&self, e: EntityIdx) -> EntityIdx {
-        let mut x = e.0;
-        while self.parent[x as usize] != x {
-            x = self.parent[x as usize];
+        EntityIdx(root(&self.parent, e.0))
+    }
+
+    /// Makes `g` (a root) the root of the groups `roots`, and drops the orders that now hold
+    /// inside one group.
+    fn merge(&mut self, g: EntityIdx, roots: &[EntityIdx]) {
+        for r in roots {
+            self.parent[r.index()] = g.0;
         }
-        EntityIdx(x)
+        self.grown[g.index()] = true;
+        let (parent, before) = (&self.parent, &mut self.before);
+        before.retain(|(a, b)| root(parent, a.0) != root(parent, b.0));
     }
 
     /// Learns from a failure (see the module documentation); `false` when there is nothing
@@ -169,32 +184,15 @@ impl Learned {
         let chain: Vec<EntityIdx> =
             f.chain.iter().map(|e| self.find(*e)).filter(|e| *e != g).collect();
         if !chain.is_empty() && groupable(g) && chain.iter().all(|e| groupable(*e)) {
-            let mut merged = self.parent.clone();
-            for e in &chain {
-                merged[e.index()] = g.0;
-            }
-            let members: usize = (0..merged.len())
+            let columns: usize = (0..self.parent.len() as u32)
                 .filter(|&i| {
-                    let mut x = i as u32;
-                    while merged[x as usize] != x {
-                        x = merged[x as usize];
-                    }
-                    x == g.0
+                    let r = EntityIdx(root(&self.parent, i));
+                    r == g || chain.contains(&r)
                 })
-                .map(|i| layout.columns(EntityIdx(i as u32)).len())
+                .map(|i| layout.columns(EntityIdx(i)).len())
                 .sum();
-            if members < crate::polysolve::MAX_VARS {
-                self.parent = merged;
-                self.grown[g.index()] = true;
-                let (parent, before) = (&self.parent, &mut self.before);
-                let find = |e: EntityIdx| {
-                    let mut x = e.0;
-                    while parent[x as usize] != x {
-                        x = parent[x as usize];
-                    }
-                    x
-                };
-                before.retain(|(a, b)| find(*a) != find(*b));
+            if columns < crate::polysolve::MAX_VARS {
+                self.merge(g, &chain);
                 return true;
             }
         }
@@ -210,17 +208,7 @@ impl Learned {
                 return true;
             }
             if groupable(g) && groupable(s) {
-                self.parent[s.index()] = g.0;
-                self.grown[g.index()] = true;
-                let (parent, before) = (&self.parent, &mut self.before);
-                let find = |e: EntityIdx| {
-                    let mut x = e.0;
-                    while parent[x as usize] != x {
-                        x = parent[x as usize];
-                    }
-                    x
-                };
-                before.retain(|(a, b)| find(*a) != find(*b));
+                self.merge(g, &[s]);
                 return true;
             }
         }
@@ -1098,10 +1086,9 @@ impl Placer<'_> {
         crate::sketch::sketch_coords_in::<Q>(self.system, b)
     }
 
-    /// The groups whose placement fixed what group `g`'s constraints ask, that were placed
-    /// with a free choice: through the placed entities of its ready constraints and, from
-    /// them, the groups that determined those; most recently placed first.
-    fn suspects(&self, g: EntityIdx, ready: &[ConstraintIdx]) -> Vec<EntityIdx> {
+    /// The placed groups that group `g`'s ready constraints bind it to, and, from them, the
+    /// groups that determined those (transitively).
+    fn ancestors(&self, g: EntityIdx, ready: &[ConstraintIdx]) -> Vec<EntityIdx> {
         let mut seen: Vec<EntityIdx> = Vec::new();
         let mut queue: Vec<EntityIdx> = Vec::new();
         for c in ready {
@@ -1121,8 +1108,15 @@ impl Placer<'_> {
                 }
             }
         }
+        seen
+    }
+
+    /// The groups whose placement fixed what group `g`'s constraints ask, that were placed
+    /// with a free choice: through the placed entities of its ready constraints and, from
+    /// them, the groups that determined those; most recently placed first.
+    fn suspects(&self, g: EntityIdx, ready: &[ConstraintIdx]) -> Vec<EntityIdx> {
         let mut free: Vec<EntityIdx> =
-            seen.into_iter().filter(|h| self.freedom[h.index()] > 0).collect();
+            self.ancestors(g, ready).into_iter().filter(|h| self.freedom[h.index()] > 0).collect();
         free.sort_by_key(|h| Reverse(self.step[h.index()]));
         free
     }
@@ -1131,25 +1125,7 @@ impl Placer<'_> {
     /// the groups that determined them) and that depend on the suspect `s`, with `s`: the
     /// loop from the free choice to the failure.
     fn chain(&self, g: EntityIdx, ready: &[ConstraintIdx], s: EntityIdx) -> Vec<EntityIdx> {
-        let mut ancestors: Vec<EntityIdx> = Vec::new();
-        let mut queue: Vec<EntityIdx> = Vec::new();
-        for c in ready {
-            for b in &self.bases[c.index()] {
-                let h = self.group[b.index()];
-                if h != g && self.placed[b.index()] && !ancestors.contains(&h) {
-                    ancestors.push(h);
-                    queue.push(h);
-                }
-            }
-        }
-        while let Some(h) = queue.pop() {
-            for d in &self.determiners[h.index()] {
-                if !ancestors.contains(d) {
-                    ancestors.push(*d);
-                    queue.push(*d);
-                }
-            }
-        }
+        let ancestors = self.ancestors(g, ready);
         let reaches = |h: EntityIdx| {
             let mut seen = vec![h];
             let mut queue = vec![h];
