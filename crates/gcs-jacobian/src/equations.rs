@@ -29,7 +29,7 @@
 //! ```
 
 use gcs_model::{ConstraintIdx, EntityIdx, System};
-use gcs_rank::{Field, SparseRow};
+use gcs_rank::{BigRational, Field, SparseRow};
 use num_traits::ToPrimitive;
 
 use crate::dual::Dual;
@@ -125,6 +125,58 @@ impl<'s> Equations<'s> {
             values: law.rows.iter().map(|r| r.value.clone()).collect(),
             rows: law.rows.iter().map(|r| grad_row(r, &local.cols)).collect(),
         }
+    }
+
+    /// The polynomial equations of constraint `c` at `x` in any field, with the user's value
+    /// for a dimension: the rows of a parameter-free constraint ([`Self::rows`]), or the
+    /// dimension's polynomial measure minus what it is where the dimension holds (the squared
+    /// distance between two points minus the value squared; a radius or a coordinate
+    /// difference minus the value). `None` for a dimension without a value or whose measure
+    /// is not a polynomial (distances to lines, angles, ratios): what a solver that needs
+    /// polynomials (homotopy continuation) cannot take.
+    pub fn polynomial<F: Field>(&self, c: ConstraintIdx, x: &[F]) -> Option<Residual<F>> {
+        let target = F::from_rational(&self.target(c)?).ok()?;
+        let mut rows = self.rows(c, x);
+        if !target.is_zero() {
+            for v in &mut rows.values {
+                *v = v.sub(&target);
+            }
+        }
+        Some(rows)
+    }
+
+    /// What every row of [`Self::rows`] of constraint `c` is where `c` holds at the user's
+    /// value, when that is a constant: zero for a parameter-free constraint; for a dimension,
+    /// what its polynomial measure is at the value (see [`Self::polynomial`]: a solver that
+    /// evaluates often computes it once). `None` where [`Self::polynomial`] is.
+    pub fn target(&self, c: ConstraintIdx) -> Option<BigRational> {
+        let constraint = self.system.constraint(c);
+        if !constraint.kind.is_metric() {
+            return Some(BigRational::from_integer(0.into()));
+        }
+        laws::polynomial_target(constraint.signature.metric()?, constraint.value.as_ref()?)
+    }
+
+    /// The total degree of each equation of [`Self::polynomial`] in the coordinates (computed
+    /// on polynomials modulo a prime: exact for equations with rational coefficients, up to
+    /// a coefficient that vanishes modulo 2^61 − 1). `None` where [`Self::polynomial`] is, or
+    /// when the constraint reads more than 31 coordinates.
+    pub fn degrees(&self, c: ConstraintIdx) -> Option<Vec<u32>> {
+        use crate::polysolve::{MAX_VARS, Poly};
+        type P = Poly<gcs_rank::ModP>;
+        let mut x: Vec<P> = vec![P::zero(); self.layout.ncols()];
+        let mut k = 0;
+        for e in self.system.constraint_base_entities(c) {
+            for col in self.layout.columns(e) {
+                if k == MAX_VARS {
+                    return None;
+                }
+                x[col] = P::var(k);
+                k += 1;
+            }
+        }
+        let rows = self.polynomial(c, &x)?;
+        Some(rows.values.iter().map(P::max_degree).collect())
     }
 
     /// The residual of constraint `c` at the real configuration `x`: the residuals of a

@@ -18,7 +18,7 @@
 //! and, for a metric one, in [`measure`] (the compiler lists them).
 
 use gcs_model::{EntityIdx, Gap, Metric, Signature};
-use gcs_rank::Field;
+use gcs_rank::{BigRational, Field};
 
 use crate::dual::{Dual, vec as v};
 use crate::views::Local;
@@ -539,6 +539,29 @@ pub(crate) fn measure(
             (ratio, value)
         }
     })
+}
+
+/// For a metric whose measure in [`law`] is a polynomial in the coordinates, the value that
+/// measure takes where the dimension holds at `value`: the value squared for the distance
+/// between two points (the measure is the squared distance), the value itself for a radius
+/// and a coordinate difference. `None` where the measure is a ratio or needs a square root
+/// (distances to lines and planes, between circles, angles, ratios): a solver that needs
+/// polynomial equations (homotopy continuation) cannot take those.
+pub(crate) fn polynomial_target(metric: Metric, value: &BigRational) -> Option<BigRational> {
+    use Metric as M;
+    match metric {
+        M::DistancePointPoint(..) => Some(value * value),
+        M::Radius(_) | M::DistanceX(..) | M::DistanceY(..) => Some(value.clone()),
+        M::DistancePointLine { .. }
+        | M::DistancePointPlane { .. }
+        | M::DistanceLineLine(..)
+        | M::DistancePlanePlane(..)
+        | M::AngleLineLine(..)
+        | M::AnglePlanePlane(..)
+        | M::AngleLinePlane { .. }
+        | M::DistanceCircleCircle(..)
+        | M::LengthRatio(..) => None,
+    }
 }
 
 /// The angle in degrees, in `[0°, 90°]`, between two undirected lines with directions `u`, `w`

@@ -160,7 +160,7 @@ impl<F: Field> Poly<F> {
         self
     }
 
-    fn max_degree(&self) -> u32 {
+    pub(crate) fn max_degree(&self) -> u32 {
         self.terms.iter().map(|(m, _)| degree(m)).max().unwrap_or(0)
     }
 

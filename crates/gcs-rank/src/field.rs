@@ -1,6 +1,7 @@
 //! The [`Field`] trait and its rational and floating-point backends.
 
 use num_bigint::BigInt;
+use num_complex::Complex64;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -16,7 +17,8 @@ use crate::error::{RankError, describe};
 /// operands by reference so that big rationals are not cloned needlessly.
 ///
 /// Implemented for [`BigRational`] (`"rational"`), [`Rat`] (`"rat"`), [`ModP`](crate::ModP)
-/// and [`ModPrime`](crate::ModPrime) (`"modp"`), `f64` (`"float"`) and, with the `rug`
+/// and [`ModPrime`](crate::ModPrime) (`"modp"`), `f64` (`"float"`), [`Complex64`] (`"complex"`:
+/// the homotopy continuation of a solver evaluates the equations over ℂ) and, with the `rug`
 /// feature, `rug::Rational` (`"rug"`).
 pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
     /// Short name of the backend, for reports: `"rational"`, `"rat"`, `"rug"`, `"modp"` or
@@ -224,6 +226,51 @@ impl Field for f64 {
 
     fn magnitude(&self) -> f64 {
         self.abs()
+    }
+}
+
+/// The complex numbers in floating point: what a homotopy continuation tracks its paths in
+/// (the constraints' laws never divide, so they evaluate over ℂ as over any field).
+impl Field for Complex64 {
+    const NAME: &'static str = "complex";
+    const EXACT: bool = false;
+
+    fn zero() -> Self {
+        Complex64::new(0.0, 0.0)
+    }
+
+    fn one() -> Self {
+        Complex64::new(1.0, 0.0)
+    }
+
+    fn is_zero(&self) -> bool {
+        self.re == 0.0 && self.im == 0.0
+    }
+
+    fn from_i64(v: i64) -> Self {
+        Complex64::new(v as f64, 0.0)
+    }
+
+    fn from_rational(q: &BigRational) -> Result<Self, RankError> {
+        f64::from_rational(q).map(|re| Complex64::new(re, 0.0))
+    }
+
+    fn from_rat(q: &Rat) -> Result<Self, RankError> {
+        f64::from_rat(q).map(|re| Complex64::new(re, 0.0))
+    }
+
+    arithmetic_by_operators!();
+
+    fn inv(&self) -> Option<Self> {
+        if Field::is_zero(self) { None } else { Some(Complex64::new(1.0, 0.0) / self) }
+    }
+
+    fn sub_mul_assign(&mut self, a: &Self, b: &Self) {
+        *self -= a * b;
+    }
+
+    fn magnitude(&self) -> f64 {
+        self.norm()
     }
 }
 

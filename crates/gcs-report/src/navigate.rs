@@ -30,8 +30,21 @@ pub fn navigate_page(system: &System, file: &str, limit: usize) -> Result<String
     let options = SolveOptions { all: Some(limit.max(1)), ..SolveOptions::default() };
     let solution = gcs_solve::solve(system, &analysis, &options).map_err(ReportError::Solve)?;
     let report = Report::new(system, file, &analysis, None);
-    let realizations = solution.solutions.clone().unwrap_or_default();
-    let choices = solution.solution_choices.clone().unwrap_or_default();
+    // The page chooses among the closed-form steps' candidates: the core as solved from the
+    // drawing (its first realization).
+    let cores = solution.core_choices.clone().unwrap_or_default();
+    let on_solved_core = |i: &usize| cores.get(*i).is_none_or(|k| *k == 0);
+    let realizations: Vec<Vec<f64>> = (solution.solutions.clone().unwrap_or_default().into_iter())
+        .enumerate()
+        .filter(|(i, _)| on_solved_core(i))
+        .map(|(_, x)| x)
+        .collect();
+    let choices: Vec<Vec<usize>> =
+        (solution.solution_choices.clone().unwrap_or_default().into_iter())
+            .enumerate()
+            .filter(|(i, _)| on_solved_core(i))
+            .map(|(_, c)| c)
+            .collect();
     let steps: Vec<(usize, &gcs_solve::PlanStep)> =
         solution.plan.iter().enumerate().filter(|(_, p)| p.method == Method::ClosedForm).collect();
     let ids = |es: &[gcs_model::EntityIdx]| -> Vec<String> {

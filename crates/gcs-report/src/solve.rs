@@ -57,6 +57,23 @@ pub struct PlanReport {
     /// Whether the user fixed the choice (`--choose`).
     #[serde(default)]
     pub fixed: bool,
+    /// With `--all`, for a core enumerated by homotopy continuation: its paths.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paths: Option<PathsReport>,
+}
+
+/// The paths of a core's homotopy (`gcs solve --all`) and what they ended at.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PathsReport {
+    /// Paths tracked (the total degree of the core's equations).
+    pub tracked: usize,
+    /// Distinct finite nonsingular complex solutions.
+    pub finite: usize,
+    /// Real ones among them: the core's realizations (`candidates`).
+    pub real: usize,
+    /// Paths that ended neither at a nonsingular solution nor at infinity (`complete` is
+    /// then false).
+    pub failed: usize,
 }
 
 /// One model's solve report, in the order of its fields in the JSON line.
@@ -106,6 +123,9 @@ pub struct SolveReport {
     /// With `--all`: whether the enumeration stopped at `--max-solutions`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncated: Option<bool>,
+    /// With `--all`: for each of `solutions`, the core's candidate it is built on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub core_choices: Option<Vec<usize>>,
     /// For a model read from a CAD file: the import section (flattened into the line).
     #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
     pub import: Option<crate::ImportReport>,
@@ -206,6 +226,12 @@ impl SolveReport {
                 constraints: p.constraints.iter().map(|c| id(*c)).collect(),
                 complete: p.complete,
                 fixed: p.fixed,
+                paths: p.paths.map(|c| PathsReport {
+                    tracked: c.paths,
+                    finite: c.finite,
+                    real: c.real,
+                    failed: c.failed,
+                }),
             })
             .collect();
         let shape = |x: &[f64]| -> Vec<Value> {
@@ -246,6 +272,7 @@ impl SolveReport {
                 .as_ref()
                 .map(|all| all.iter().map(|x| shape(x)).collect()),
             truncated: solution.solutions.as_ref().map(|_| solution.truncated),
+            core_choices: solution.core_choices.clone(),
             import: None,
         }
     }

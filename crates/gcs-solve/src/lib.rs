@@ -25,12 +25,19 @@
 //! reported with its entities and constraints and left at its least-squares point, and the
 //! rest is solved without it.
 //!
-//! Not built yet: the full DR-plan recursion (a cluster's children as rigid bodies), closed
-//! forms for lines and circles, and backtracking over the core's realizations.
+//! With [`SolveOptions::all`], the core's other real realizations are found by homotopy
+//! continuation ([`alternatives`], [`homotopy`]) when its equations are polynomial and it has
+//! at most [`homotopy::MAX_PATHS`] paths.
+//!
+//! Not built yet: the full DR-plan recursion (a cluster's children as rigid bodies, which
+//! would keep each node's homotopy small), closed forms for lines and circles, and
+//! backtracking over the core's realizations.
 //!
 //! A library: it never panics on input and never prints.
 
+pub mod alternatives;
 pub mod closed;
+pub mod homotopy;
 pub mod plan;
 
 use std::cell::RefCell;
@@ -164,6 +171,10 @@ pub struct Solution {
     /// Whether the enumeration stopped at [`SolveOptions::all`]'s limit (or at its budget of
     /// partial placements).
     pub truncated: bool,
+    /// With [`SolveOptions::all`]: for each realization of `solutions`, the core's candidate
+    /// it is built on (its index among the core's real realizations; 0 where the core was not
+    /// enumerated); `None` without it.
+    pub core_choices: Option<Vec<usize>>,
 }
 
 /// A part of the system that has no real solution (with the choices made for the rest).
@@ -216,6 +227,11 @@ pub struct PlanStep {
     pub complete: bool,
     /// Whether the user fixed the choice ([`SolveOptions::choose`]).
     pub fixed: bool,
+    /// For the core with [`SolveOptions::all`]: its homotopy's paths and what they ended at
+    /// ([`alternatives`]); `candidates` are then its real realizations, the one the solve
+    /// reached from the drawing first, and `complete` says whether every path was decided.
+    /// `None` where the core was not enumerated (see the [`alternatives`] module).
+    pub paths: Option<alternatives::PathCounts>,
 }
 
 /// Why a system was not solved.
@@ -801,7 +817,31 @@ pub fn solve(
             chosen: Some(0),
             complete,
             fixed: false,
+            paths: None,
         });
+    }
+    // With `all`: every real realization of a solved core, by homotopy continuation.
+    let mut cores: Vec<Vec<f64>> = vec![x.clone()];
+    if options.all.is_some()
+        && no_solution.is_empty()
+        && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
+        && let Some((counts, found)) =
+            alternatives::realizations(system, &layout, &equations, &construction.core, &x, 0x5eed)
+        && let Some(step) = plan.first_mut()
+    {
+        // The solve's own realization first (the nearest; it is one of them when the
+        // homotopy found it).
+        step.candidates = found.len();
+        step.complete = counts.failed == 0;
+        step.paths = Some(counts);
+        if !found.is_empty() {
+            // The solve's own realization stands for the homotopy's copy of it.
+            let near = found[0].iter().zip(&x).all(|(a, b)| (a - b).abs() <= 1e-7 * scale);
+            cores = found;
+            if near {
+                cores[0] = x.clone();
+            }
+        }
     }
     // The fixed choices, by closed-form step.
     let offset = plan.len();
@@ -937,6 +977,7 @@ pub fn solve(
             chosen: placed.chosen,
             complete: true,
             fixed: forced[k].is_some(),
+            paths: None,
         });
     }
 
@@ -988,7 +1029,7 @@ pub fn solve(
     } else {
         Status::Solved
     };
-    let (solutions, solution_choices, truncated) = match options.all {
+    let (solutions, solution_choices, truncated, core_choices) = match options.all {
         Some(limit) => {
             // Each consistent redundant constraint is checked as soon as its entities are
             // placed: after the last step that places one of them (before any: depth 0).
@@ -1014,11 +1055,28 @@ pub fn solve(
                 truncated: false,
                 budget: ENUMERATION_BUDGET,
             };
-            let mut y = core_x.clone();
-            found.search(&construction.steps, &mut y, &layout, system, &equations, &forced, &holds);
-            (Some(found.solutions), Some(found.choices), found.truncated)
+            let mut core_choices = Vec::new();
+            for (k, core) in cores.iter().enumerate() {
+                // (A realization is the whole configuration at the core's solve, the core's
+                // columns replaced.)
+                let mut y = core.clone();
+                found.search(
+                    &construction.steps,
+                    &mut y,
+                    &layout,
+                    system,
+                    &equations,
+                    &forced,
+                    &holds,
+                );
+                core_choices.resize(found.solutions.len(), k);
+                if found.truncated {
+                    break;
+                }
+            }
+            (Some(found.solutions), Some(found.choices), found.truncated, Some(core_choices))
         }
-        None => (None, None, false),
+        None => (None, None, false, None),
     };
     let mut moved = 0.0f64;
     for e in system.entity_indices() {
@@ -1046,6 +1104,7 @@ pub fn solve(
         solutions,
         solution_choices,
         truncated,
+        core_choices,
     })
 }
 

@@ -541,3 +541,48 @@ fn an_edited_ratio_moves_the_sketch() {
     assert!(near(at("p3"), [8.0, 2.0]), "{:?}", at("p3"));
     assert!(near(at("p4"), [0.0, 2.0]), "{:?}", at("p4"));
 }
+
+/// The triangular prism (a core no closed-form step places) with a point hung on it by two
+/// distances: `--all` lists the prism's real realizations, found by homotopy continuation
+/// among its 24 complex ones (Capco et al. 2018), each with the hung point on either side.
+#[test]
+fn the_core_realizations_come_from_homotopy_continuation() {
+    let points: [[f64; 2]; 7] =
+        [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7], [5.9, 1.3]];
+    let edges =
+        [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5), (6, 1), (6, 3)];
+    let mut text = String::from("System(dim: 2, entities: [");
+    for (i, p) in points.iter().enumerate() {
+        text += &format!("Point(id: \"p{i}\", at: [{}, {}]),", p[0], p[1]);
+    }
+    text += "], constraints: [";
+    for (a, b) in edges {
+        let d = (points[a][0] - points[b][0]).hypot(points[a][1] - points[b][1]);
+        text += &format!("Distance(id: \"d{a}{b}\", a: \"p{a}\", b: \"p{b}\", value: {d}),");
+    }
+    text += "])";
+    let s = model(&text);
+    let sol = solve_with(&s, &SolveOptions { all: Some(1000), ..SolveOptions::default() });
+    assert_eq!(sol.status, Status::Solved);
+    let core = &sol.plan[0];
+    let paths = core.paths.expect("the prism is enumerated");
+    assert_eq!((paths.paths, paths.finite, paths.failed), (256, 24, 0), "{paths:?}");
+    assert_eq!(core.candidates, paths.real);
+    assert!(core.complete && core.candidates >= 2 && core.candidates % 2 == 0, "{core:?}");
+    let all = sol.solutions.as_ref().unwrap();
+    let cores = sol.core_choices.as_ref().unwrap();
+    assert_eq!(all.len(), cores.len());
+    for (i, x) in all.iter().enumerate() {
+        assert!(distances_hold(&s, x), "realization {i}: {x:?}");
+    }
+    // In the order of the core's candidates, the drawing's first; each with the hung point on
+    // both sides, or none where its two circles do not meet.
+    assert_eq!(cores[0], 0);
+    assert!(cores.windows(2).all(|w| w[0] <= w[1]) && cores.iter().all(|&k| k < core.candidates));
+    for k in 0..core.candidates {
+        assert!(matches!(cores.iter().filter(|&&c| c == k).count(), 0 | 2), "{cores:?}");
+    }
+    assert!(cores.last() > Some(&0), "{cores:?}");
+    assert!(all.contains(&sol.x), "the realization the drawing shows is one of them");
+    assert!(!sol.truncated);
+}

@@ -1,0 +1,470 @@
+//! Every isolated complex solution of a square polynomial system, by homotopy continuation
+//! (the ESM paper's §2.2 requirement on a node's algebraic solver: all the solutions, not the
+//! one Newton reaches from the drawing).
+//!
+//! The method is the classical total-degree homotopy with the gamma trick:
+//!
+//! - The start system `G_i(x) = x_i^{d_i} − 1` has `Π d_i` solutions (products of roots of
+//!   unity), and Bézout's bound says the target system `F` has at most that many isolated
+//!   ones. The homotopy `H(x, t) = (1 − t)·γ·G(x) + t·F(x)` with a random complex `γ` has, with
+//!   probability one, no singular point for `t ∈ [0, 1)`: each start solution begins a smooth
+//!   path, and every isolated solution of `F` ends one of them.
+//! - Paths are tracked in projective space (`x = z / z₀` on a random affine chart
+//!   `a·(z₀, z) = 1`), so that the paths whose solutions go to infinity stay bounded and end
+//!   where `z₀ = 0`. `F` is given as a black box on affine coordinates; its homogenisation is
+//!   `z₀^{d_i} F_i(z / z₀)`, with the derivative in `z₀` from Euler's relation.
+//! - Each step predicts with a fourth-order Runge–Kutta step of `dz/dt = −H_z⁻¹ H_t` and
+//!   corrects with Newton at the new `t`; the step grows after successes and halves after a
+//!   failure. A path whose step underflows before `t = 1` ends there (near a singular end).
+//! - At `t = 1` (or where a path stopped), an end with `z₀` negligible is at infinity; any
+//!   other end is refined by Newton on `F` itself, and counts as a solution when Newton
+//!   converges there with a well-conditioned Jacobian. Ends that are neither (singular
+//!   solutions, paths lost) are counted as failed: the caller reports the solution set as
+//!   incomplete.
+//!
+//! All of this is floating point: the counts are numerical results, reported as such.
+
+use gcs_model::rng::SplitMix64;
+use gcs_rank::Complex64 as C;
+
+/// The most paths a system may have (`Π d_i`); beyond, it is not attempted.
+pub const MAX_PATHS: usize = 1 << 14;
+
+/// A square polynomial system over affine coordinates: `n` unknowns, one equation per
+/// unknown with its total degree, and an evaluation giving the values and the Jacobian
+/// (row-major, `n × n`). Scaled so that its solutions and coefficients are of order 1 (the
+/// tolerances are relative to 1).
+pub struct Target<'a> {
+    /// The unknowns (and equations).
+    pub n: usize,
+    /// The total degree of each equation (at least 1).
+    pub degrees: Vec<u32>,
+    /// Values and Jacobian at a point.
+    pub eval: &'a dyn Fn(&[C]) -> (Vec<C>, Vec<C>),
+}
+
+/// What the paths ended at.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Ends {
+    /// The paths tracked (`Π d_i`).
+    pub paths: usize,
+    /// The distinct finite nonsingular solutions, refined by Newton on the target.
+    pub solutions: Vec<Vec<C>>,
+    /// Paths that ended at infinity.
+    pub at_infinity: usize,
+    /// Paths that ended neither at a nonsingular solution nor at infinity (a singular
+    /// solution, or a path lost).
+    pub failed: usize,
+}
+
+impl Ends {
+    /// Whether every path was tracked to an end that is a solution or at infinity: then
+    /// `solutions` are all the isolated nonsingular solutions of the target.
+    pub fn complete(&self) -> bool {
+        self.failed == 0
+    }
+}
+
+/// Solves `a·x = b` (dense, `n × n`, row-major) by Gaussian elimination with partial pivoting;
+/// `None` when a pivot vanishes. Also returns the smallest pivot magnitude over the largest, a
+/// cheap conditioning estimate.
+fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64)> {
+    let (mut small, mut large) = (f64::INFINITY, 0.0f64);
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i * n + k].norm().total_cmp(&a[j * n + k].norm()))?;
+        let pivot = a[p * n + k];
+        if pivot.norm() == 0.0 || !pivot.norm().is_finite() {
+            return None;
+        }
+        small = small.min(pivot.norm());
+        large = large.max(pivot.norm());
+        if p != k {
+            for j in 0..n {
+                a.swap(k * n + j, p * n + j);
+            }
+            b.swap(k, p);
+        }
+        for i in k + 1..n {
+            let f = a[i * n + k] / pivot;
+            if f.norm() == 0.0 {
+                continue;
+            }
+            for j in k..n {
+                let v = a[k * n + j];
+                a[i * n + j] -= f * v;
+            }
+            let v = b[k];
+            b[i] -= f * v;
+        }
+    }
+    for k in (0..n).rev() {
+        let mut s = b[k];
+        for j in k + 1..n {
+            s -= a[k * n + j] * b[j];
+        }
+        b[k] = s / a[k * n + k];
+    }
+    Some((b, small / large))
+}
+
+fn norm(v: &[C]) -> f64 {
+    v.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt()
+}
+
+/// Where a path ended: its point, `|z₀| / |z|` there, that ratio where `1 − t` first fell
+/// below 1e-2, and what was left of `1 − t`.
+struct Track {
+    z: Vec<C>,
+    ratio: f64,
+    early: Option<(f64, f64)>,
+    left: f64,
+}
+
+impl Track {
+    /// Whether a path that did not end at a nonsingular solution goes to infinity: `z₀`
+    /// negligible, or small (below 1e-2 of `z`) and shrinking like a positive power of
+    /// `1 − t` since `1 − t` fell below 1e-2 (at least five-fold, over at least a halving of
+    /// `1 − t`), where a path to a finite end keeps it.
+    fn at_infinity(&self) -> bool {
+        if self.ratio <= 1e-10 {
+            return true;
+        }
+        let Some((left0, ratio0)) = self.early else { return false };
+        self.left <= 0.5 * left0 && self.ratio < 1e-2 && self.ratio <= 0.2 * ratio0
+    }
+}
+
+/// The homotopy in projective coordinates `z = (z₀, z₁ … z_n)` on the chart `a·z = 1`.
+struct Homotopy<'a> {
+    target: &'a Target<'a>,
+    gamma: C,
+    chart: Vec<C>,
+}
+
+impl Homotopy<'_> {
+    /// `H(z, t)` (n values, then the chart's), `H_z` ((n+1)², row-major) and `H_t` (n+1).
+    fn eval(&self, z: &[C], t: f64) -> (Vec<C>, Vec<C>, Vec<C>) {
+        let n = self.target.n;
+        let m = n + 1;
+        let z0 = z[0];
+        let x: Vec<C> = z[1..].iter().map(|v| v / z0).collect();
+        let (f, jf) = (self.target.eval)(&x);
+        let (mut h, mut hz, mut ht) =
+            (vec![C::new(0.0, 0.0); m], vec![C::new(0.0, 0.0); m * m], vec![C::new(0.0, 0.0); m]);
+        let (s, u) = (C::new(1.0 - t, 0.0) * self.gamma, C::new(t, 0.0));
+        for i in 0..n {
+            let d = self.target.degrees[i] as i32;
+            // Homogenised target: z₀^d F(z/z₀); ∂/∂z_j = z₀^{d−1} ∂F/∂x_j;
+            // ∂/∂z₀ = d z₀^{d−1} F − z₀^{d−2} Σ_j z_j ∂F/∂x_j.
+            let zd1 = z0.powi(d - 1);
+            let fh = zd1 * z0 * f[i];
+            let mut euler = C::new(0.0, 0.0);
+            for j in 0..n {
+                euler += z[1 + j] * jf[i * n + j];
+            }
+            let dfh0 = C::new(d as f64, 0.0) * zd1 * f[i] - zd1 / z0 * euler;
+            // Homogenised start: z_i^d − z₀^d.
+            let gh = z[1 + i].powi(d) - z0.powi(d);
+            h[i] = s * gh + u * fh;
+            ht[i] = fh - self.gamma * gh;
+            hz[i * m] = s * (-C::new(d as f64, 0.0) * z0.powi(d - 1)) + u * dfh0;
+            for j in 0..n {
+                let mut v = u * zd1 * jf[i * n + j];
+                if j == i {
+                    v += s * C::new(d as f64, 0.0) * z[1 + i].powi(d - 1);
+                }
+                hz[i * m + 1 + j] = v;
+            }
+        }
+        let mut chart = C::new(-1.0, 0.0);
+        for (j, a) in self.chart.iter().enumerate() {
+            chart += a * z[j];
+            hz[n * m + j] = *a;
+        }
+        h[n] = chart;
+        (h, hz, ht)
+    }
+
+    /// `dz/dt` at `(z, t)`.
+    fn tangent(&self, z: &[C], t: f64) -> Option<Vec<C>> {
+        let m = self.target.n + 1;
+        let (_, hz, ht) = self.eval(z, t);
+        let rhs: Vec<C> = ht.iter().map(|v| -v).collect();
+        lu_solve(hz, rhs, m).map(|(d, _)| d)
+    }
+
+    /// Newton at fixed `t` from `z`: the corrected point when it converges in at most three
+    /// steps, each at most a quarter of the one before, the first small beside `z` (a larger
+    /// correction may land on another path).
+    fn correct(&self, z: &[C], t: f64) -> Option<Vec<C>> {
+        let m = self.target.n + 1;
+        let mut z = z.to_vec();
+        let size = norm(&z);
+        let mut last = 0.05 * size;
+        for _ in 0..3 {
+            let (h, hz, _) = self.eval(&z, t);
+            let (dz, _) = lu_solve(hz, h, m)?;
+            let step = norm(&dz);
+            if !(step <= 0.25 * last) && last != 0.05 * size || !(step <= last) {
+                return None;
+            }
+            for (a, d) in z.iter_mut().zip(&dz) {
+                *a -= d;
+            }
+            if step <= 1e-11 * size {
+                return Some(z);
+            }
+            last = step;
+        }
+        (last <= 1e-9 * size).then_some(z)
+    }
+
+    /// Tracks the path from `z` at `t = 0` towards `t = 1`, steps at most `max_step`: they
+    /// grow after successes and halve after failures, and near the end they are at most a
+    /// half of what is left of `1 − t` (geometric in `−ln(1 − t)`, where the paths to
+    /// singular ends slow down). The path stops at `1 − t = 1e-8` (what is left to a
+    /// nonsingular end, Newton on the target does), where its step underflows, and where it
+    /// is clearly going to infinity ([`Track::at_infinity`]'s test, with margins).
+    fn track(&self, mut z: Vec<C>, max_step: f64) -> Track {
+        let mut t = 0.0f64;
+        let mut h = max_step.min(0.02);
+        let mut successes = 0;
+        let mut early: Option<(f64, f64)> = None;
+        let ratio = |z: &[C]| z[0].norm() / norm(z);
+        for _ in 0..2_000 {
+            let left = 1.0 - t;
+            if left <= 1e-8 {
+                break;
+            }
+            let dt = h.min(0.5 * left);
+            match self.rk4(&z, t, dt).and_then(|p| self.correct(&p, t + dt)) {
+                Some(next) if next.iter().all(|c| c.re.is_finite() && c.im.is_finite()) => {
+                    z = next;
+                    t += dt;
+                    successes += 1;
+                    if successes >= 3 {
+                        h = (h * 2.0).min(max_step);
+                        successes = 0;
+                    }
+                    if early.is_none() && 1.0 - t <= 1e-2 {
+                        early = Some((1.0 - t, ratio(&z)));
+                    }
+                    // Clearly at infinity: z₀ negligible, or shrunk twenty-fold since
+                    // `1 − t` fell below 1e-2 and already below 1e-3 of z.
+                    let r = ratio(&z);
+                    if r < 1e-10
+                        || early
+                            .is_some_and(|(_, r0)| 1.0 - t <= 1e-4 && r < 1e-3 && r <= r0 / 20.0)
+                    {
+                        break;
+                    }
+                }
+                _ => {
+                    h /= 2.0;
+                    successes = 0;
+                    if h < 1e-6 * left {
+                        break;
+                    }
+                }
+            }
+        }
+        Track { ratio: ratio(&z), early, left: 1.0 - t, z }
+    }
+
+    fn rk4(&self, z: &[C], t: f64, dt: f64) -> Option<Vec<C>> {
+        let add = |z: &[C], k: &[C], s: f64| -> Vec<C> {
+            z.iter().zip(k).map(|(a, b)| a + b * s).collect()
+        };
+        let k1 = self.tangent(z, t)?;
+        let k2 = self.tangent(&add(z, &k1, dt / 2.0), t + dt / 2.0)?;
+        let k3 = self.tangent(&add(z, &k2, dt / 2.0), t + dt / 2.0)?;
+        let k4 = self.tangent(&add(z, &k3, dt), t + dt)?;
+        Some(
+            (0..z.len())
+                .map(|i| z[i] + (k1[i] + k2[i] * 2.0 + k3[i] * 2.0 + k4[i]) * (dt / 6.0))
+                .collect(),
+        )
+    }
+}
+
+/// Newton on the target from `x`: the solution and whether it is nonsingular there — Newton
+/// converges quadratically to a nonsingular solution (a step below 1e-12 of the size within a
+/// dozen steps), only linearly to a singular one, and the pivots of the Jacobian stay apart.
+fn refine(target: &Target<'_>, x: &[C]) -> Option<(Vec<C>, bool)> {
+    let n = target.n;
+    let mut x = x.to_vec();
+    let mut converged = false;
+    for _ in 0..12 {
+        let (f, j) = (target.eval)(&x);
+        let (dx, _) = lu_solve(j, f, n)?;
+        for (a, d) in x.iter_mut().zip(&dx) {
+            *a -= d;
+        }
+        if norm(&dx) <= 1e-12 * (1.0 + norm(&x)) {
+            converged = true;
+            break;
+        }
+    }
+    let (f, j) = (target.eval)(&x);
+    let scale = 1.0 + norm(&x);
+    if !(norm(&f) <= 1e-9 * scale.powi(2)) {
+        return None;
+    }
+    let (_, conditioning) = lu_solve(j, f, n)?;
+    Some((x, converged && conditioning > 1e-10))
+}
+
+/// What a path ended at.
+enum End {
+    Solution(Vec<C>),
+    Infinity,
+    Failed,
+}
+
+fn end_of(target: &Target<'_>, track: &Track) -> End {
+    if track.ratio <= 1e-10 {
+        return End::Infinity;
+    }
+    let end = &track.z;
+    let x: Vec<C> = end[1..].iter().map(|v| v / end[0]).collect();
+    match refine(target, &x) {
+        // (Near the end of its path: Newton from the end of a path to infinity may reach
+        // any solution.)
+        Some((y, true)) if same_within(&x, &y, 1e-4) => End::Solution(y),
+        _ if track.at_infinity() => End::Infinity,
+        _ => End::Failed,
+    }
+}
+
+/// Whether two solutions are the same (relative to their size).
+fn same(a: &[C], b: &[C]) -> bool {
+    same_within(a, b, 1e-7)
+}
+
+fn same_within(a: &[C], b: &[C], tolerance: f64) -> bool {
+    let d = a.iter().zip(b).map(|(p, q)| (p - q).norm_sqr()).sum::<f64>().sqrt();
+    d <= tolerance * (1.0 + norm(a))
+}
+
+/// Every isolated nonsingular solution of `target` (see the module documentation), with
+/// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
+/// [`MAX_PATHS`] paths.
+pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
+    let n = target.n;
+    let mut paths: usize = 1;
+    for &d in &target.degrees {
+        paths = paths.checked_mul(d.max(1) as usize).filter(|&p| p <= MAX_PATHS)?;
+    }
+    let mut rng = SplitMix64::new(seed);
+    let mut unit = || {
+        let a = std::f64::consts::TAU * rng.unit_f64();
+        C::new(a.cos(), a.sin())
+    };
+    let gamma = unit();
+    let chart: Vec<C> = (0..=n).map(|_| unit()).collect();
+    let homotopy = Homotopy { target, gamma, chart: chart.clone() };
+    let mut ends = Ends { paths, ..Ends::default() };
+    let mut index = vec![0u32; n];
+    for _ in 0..paths {
+        // The start point: roots of unity, on the chart.
+        let mut z = vec![C::new(1.0, 0.0)];
+        for (i, &k) in index.iter().enumerate() {
+            let d = target.degrees[i].max(1) as f64;
+            let a = std::f64::consts::TAU * f64::from(k) / d;
+            z.push(C::new(a.cos(), a.sin()));
+        }
+        let s: C = chart.iter().zip(&z).map(|(a, b)| a * b).sum();
+        let z: Vec<C> = z.iter().map(|v| v / s).collect();
+        // The next combination.
+        for (i, k) in index.iter_mut().enumerate() {
+            *k += 1;
+            if *k < target.degrees[i].max(1) {
+                break;
+            }
+            *k = 0;
+        }
+        // A path that ends at a solution another path reached jumped (each nonsingular
+        // solution ends one path): tracked again with smaller steps, else failed.
+        let mut result = None;
+        for max_step in [0.1, 0.01] {
+            let track = homotopy.track(z.clone(), max_step);
+            result = Some(end_of(target, &track));
+            if let Some(End::Solution(x)) = &result
+                && ends.solutions.iter().any(|s| same(s, x))
+            {
+                continue;
+            }
+            break;
+        }
+        match result {
+            Some(End::Solution(x)) if !ends.solutions.iter().any(|s| same(s, &x)) => {
+                ends.solutions.push(x);
+            }
+            Some(End::Infinity) => ends.at_infinity += 1,
+            _ => ends.failed += 1,
+        }
+    }
+    Some(ends)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn c(re: f64) -> C {
+        C::new(re, 0.0)
+    }
+
+    /// Two circles meet in two points; a circle and a line in two; a parabola and a line
+    /// whose second intersection is at infinity in one.
+    #[test]
+    fn small_systems_have_their_bezout_counts() {
+        // x² + y² = 25, (x − 6)² + y² = 25: x = 3, y = ±4 (two paths of four at infinity).
+        let eval = |x: &[C]| {
+            let f = vec![
+                x[0] * x[0] + x[1] * x[1] - c(25.0),
+                (x[0] - c(6.0)).powi(2) + x[1] * x[1] - c(25.0),
+            ];
+            let j = vec![x[0] * 2.0, x[1] * 2.0, (x[0] - c(6.0)) * 2.0, x[1] * 2.0];
+            (f, j)
+        };
+        let t = Target { n: 2, degrees: vec![2, 2], eval: &eval };
+        let ends = solve(&t, 1).unwrap();
+        assert_eq!(ends.paths, 4);
+        assert!(ends.complete(), "{ends:?}");
+        assert_eq!(ends.solutions.len(), 2, "{ends:?}");
+        for s in &ends.solutions {
+            assert!((s[0] - c(3.0)).norm() < 1e-9 && (s[1].re.abs() - 4.0).abs() < 1e-9, "{s:?}");
+        }
+        // y = x², y = 2x − 5: x² − 2x + 5 = 0, x = 1 ± 2i (complex, not real).
+        let eval = |x: &[C]| {
+            (
+                vec![x[1] - x[0] * x[0], x[1] - x[0] * 2.0 + c(5.0)],
+                vec![-x[0] * 2.0, c(1.0), c(-2.0), c(1.0)],
+            )
+        };
+        let t = Target { n: 2, degrees: vec![2, 1], eval: &eval };
+        let ends = solve(&t, 2).unwrap();
+        assert!(ends.complete());
+        assert_eq!(ends.solutions.len(), 2);
+        assert!(ends.solutions.iter().all(|s| (s[0].im.abs() - 2.0).abs() < 1e-9));
+    }
+
+    /// A double root ends two paths: the count is not complete.
+    #[test]
+    fn a_double_root_makes_the_count_incomplete() {
+        let eval = |x: &[C]| (vec![(x[0] - c(1.0)).powi(2)], vec![(x[0] - c(1.0)) * 2.0]);
+        let t = Target { n: 1, degrees: vec![2], eval: &eval };
+        // Both paths end at it: the second is reported failed.
+        let ends = solve(&t, 3).unwrap();
+        assert!(!ends.complete(), "{ends:?}");
+    }
+
+    /// Too many paths are refused.
+    #[test]
+    fn too_many_paths_are_not_attempted() {
+        let eval = |x: &[C]| (x.to_vec(), vec![c(1.0); x.len() * x.len()]);
+        let t = Target { n: 15, degrees: vec![2; 15], eval: &eval };
+        assert!(solve(&t, 4).is_none());
+    }
+}
