@@ -154,9 +154,11 @@ enum Command {
         /// analyze`).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// Also list the other realizations (`solutions`): the core as solved, and each point
-        /// placed in closed form at each of its candidates, every combination under
-        /// which the consistent redundant constraints still hold (mirror images distinct).
+        /// Also list the other realizations (`solutions`): each real realization of the core
+        /// (found by homotopy continuation where its equations allow: `paths` in the plan;
+        /// otherwise the core as solved), and each point placed in closed form at each of its
+        /// candidates, every combination under which the consistent redundant constraints
+        /// still hold (mirror images distinct).
         #[arg(long)]
         all: bool,
         /// With --all: list at most N realizations (`truncated` says when there were more; at
@@ -167,7 +169,9 @@ enum Command {
         /// Fix the choice of a closed-form step: STEP=K places step STEP of the `plan` list (its
         /// index, from 0) at its candidate K (a point by two distances: 0 left of the line from
         /// its first anchor to its second, 1 right; by a distance and a line: 0 ahead along the
-        /// line's direction, 1 behind). Repeatable; the other steps follow the drawing.
+        /// line's direction, 1 behind). STEP 0, the core, takes its realization K among those
+        /// the homotopy finds (0: the one solved from the drawing). Repeatable; the other steps
+        /// follow the drawing.
         #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
         choose: Vec<(usize, usize)>,
         /// Files solved at once, on that many threads (default: the cores of this machine;

@@ -341,8 +341,21 @@ impl SolveReport {
         }
         if let Some(solutions) = &self.solutions {
             let fixed = self.plan.iter().filter(|p| p.fixed).count();
+            let core = match self.plan.first().and_then(|p| p.paths.as_ref().map(|c| (p, c))) {
+                Some((p, c)) => format!(
+                    "each of the core's {} real realizations ({} complex, by homotopy continuation on {} paths{})",
+                    p.candidates,
+                    c.finite,
+                    c.tracked,
+                    match c.failed {
+                        0 => String::new(),
+                        n => format!(", {n} of them undecided: there may be more"),
+                    },
+                ),
+                None => "the core as solved".to_owned(),
+            };
             out.push_str(&format!(
-                "  realizations: {}{} (the core as solved, each closed-form point at each of its candidates{}; mirror images distinct)\n",
+                "  realizations: {}{} ({core}, each closed-form point at each of its candidates{}; mirror images distinct)\n",
                 solutions.len(),
                 if self.truncated == Some(true) { ", more not listed (--max-solutions)" } else { "" },
                 match fixed {

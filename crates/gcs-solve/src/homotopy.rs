@@ -71,13 +71,15 @@ impl Ends {
 fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64)> {
     let (mut small, mut large) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i * n + k].norm().total_cmp(&a[j * n + k].norm()))?;
+        let p =
+            (k..n).max_by(|&i, &j| a[i * n + k].norm_sqr().total_cmp(&a[j * n + k].norm_sqr()))?;
         let pivot = a[p * n + k];
-        if pivot.norm() == 0.0 || !pivot.norm().is_finite() {
+        let size = pivot.norm_sqr();
+        if size == 0.0 || !size.is_finite() {
             return None;
         }
-        small = small.min(pivot.norm());
-        large = large.max(pivot.norm());
+        small = small.min(size);
+        large = large.max(size);
         if p != k {
             for j in 0..n {
                 a.swap(k * n + j, p * n + j);
@@ -86,7 +88,7 @@ fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64)> {
         }
         for i in k + 1..n {
             let f = a[i * n + k] / pivot;
-            if f.norm() == 0.0 {
+            if f.norm_sqr() == 0.0 {
                 continue;
             }
             for j in k..n {
@@ -104,7 +106,7 @@ fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64)> {
         }
         b[k] = s / a[k * n + k];
     }
-    Some((b, small / large))
+    Some((b, (small / large).sqrt()))
 }
 
 fn norm(v: &[C]) -> f64 {

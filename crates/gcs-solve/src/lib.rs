@@ -67,7 +67,9 @@ pub struct SolveOptions {
     pub all: Option<usize>,
     /// Choices fixed by the user: `(k, c)` places closed-form step `k` of [`Solution::plan`]
     /// (its index in that list) at its candidate `c`, whatever side the drawing shows; the other
-    /// steps are chosen by the drawing, with backtracking. Enumeration keeps them too.
+    /// steps are chosen by the drawing, with backtracking. Enumeration keeps them too. Step 0,
+    /// when it is the core, takes its realization `c` (among those the homotopy enumerates,
+    /// the solve's own first: [`PlanStep::paths`]).
     pub choose: Vec<(usize, usize)>,
 }
 
@@ -820,9 +822,17 @@ pub fn solve(
             paths: None,
         });
     }
-    // With `all`: every real realization of a solved core, by homotopy continuation.
+    // With `all`, or when the user chooses among them: every real realization of a solved
+    // core, by homotopy continuation.
     let mut cores: Vec<Vec<f64>> = vec![x.clone()];
-    if options.all.is_some()
+    let core_choice = match plan.len() {
+        1 => options.choose.iter().rev().find(|c| c.0 == 0).map(|c| c.1),
+        _ => None,
+    };
+    let mut enumerated = false;
+    // Each of `cores`' index among the core's candidates.
+    let mut core_ids: Vec<usize> = vec![0];
+    if (options.all.is_some() || core_choice.is_some())
         && no_solution.is_empty()
         && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
         && let Some((counts, found)) =
@@ -834,6 +844,7 @@ pub fn solve(
         step.candidates = found.len();
         step.complete = counts.failed == 0;
         step.paths = Some(counts);
+        enumerated = true;
         if !found.is_empty() {
             // The solve's own realization stands for the homotopy's copy of it.
             let near = found[0].iter().zip(&x).all(|(a, b)| (a - b).abs() <= 1e-7 * scale);
@@ -841,12 +852,36 @@ pub fn solve(
             if near {
                 cores[0] = x.clone();
             }
+            core_ids = (0..cores.len()).collect();
+        }
+    }
+    // A fixed choice of the core: one of its realizations (the solve's own is 0).
+    if let Some(k) = core_choice {
+        let why = if !enumerated {
+            Some(
+                "the core's realizations are not enumerated (see `paths` in docs/format.md)"
+                    .to_owned(),
+            )
+        } else if k >= cores.len() {
+            Some(format!("the core has {} real realization(s), 0–{}", cores.len(), cores.len() - 1))
+        } else {
+            None
+        };
+        if let Some(why) = why {
+            return Err(SolveError::Choice { step: 0, candidate: k, why });
+        }
+        x.clone_from(&cores[k]);
+        cores = vec![cores[k].clone()];
+        core_ids = vec![k];
+        if let Some(step) = plan.first_mut() {
+            step.chosen = Some(k);
+            step.fixed = true;
         }
     }
     // The fixed choices, by closed-form step.
     let offset = plan.len();
     let mut forced: Vec<Option<usize>> = vec![None; construction.steps.len()];
-    for &(step, candidate) in &options.choose {
+    for &(step, candidate) in options.choose.iter().filter(|c| core_choice.is_none() || c.0 != 0) {
         let why = if step < offset || step >= offset + construction.steps.len() {
             Some(format!(
                 "the plan has {} step{}, of which {} in closed form (steps {}–{})",
@@ -1069,7 +1104,7 @@ pub fn solve(
                     &forced,
                     &holds,
                 );
-                core_choices.resize(found.solutions.len(), k);
+                core_choices.resize(found.solutions.len(), core_ids[k]);
                 if found.truncated {
                     break;
                 }

@@ -585,4 +585,26 @@ fn the_core_realizations_come_from_homotopy_continuation() {
     assert!(cores.last() > Some(&0), "{cores:?}");
     assert!(all.contains(&sol.x), "the realization the drawing shows is one of them");
     assert!(!sol.truncated);
+    // Choosing the core's last realization (step 0): the solve lands on it, and the rest is
+    // placed as the drawing shows.
+    let k = *cores.last().unwrap();
+    let chosen = solve_with(&s, &SolveOptions { choose: vec![(0, k)], ..SolveOptions::default() });
+    assert_eq!(chosen.status, Status::Solved);
+    assert_eq!((chosen.plan[0].chosen, chosen.plan[0].fixed), (Some(k), true));
+    assert!(distances_hold(&s, &chosen.x));
+    let same_core =
+        |x: &[f64]| x[..12].iter().zip(&chosen.x[..12]).all(|(a, b)| (a - b).abs() < 1e-9);
+    assert!(all.iter().zip(cores).any(|(x, c)| *c == k && same_core(x)));
+    let listed = solve_with(
+        &s,
+        &SolveOptions { all: Some(100), choose: vec![(0, k)], ..SolveOptions::default() },
+    );
+    assert!(listed.core_choices.unwrap().iter().all(|c| *c == k));
+    // A realization the core does not have is an error.
+    let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
+    let beyond = SolveOptions { choose: vec![(0, core.candidates)], ..SolveOptions::default() };
+    assert!(matches!(
+        solve(&s, &analysis, &beyond),
+        Err(gcs_solve::SolveError::Choice { step: 0, .. })
+    ));
 }
