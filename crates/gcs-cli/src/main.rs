@@ -174,6 +174,12 @@ enum Command {
         /// follow the drawing.
         #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
         choose: Vec<(usize, usize)>,
+        /// With --all or --choose 0=K: the most homotopy paths the core's enumeration may
+        /// track (the product of its equations' degrees; at most 16384, about 100 paths a
+        /// second); 0 keeps the core as solved.
+        #[arg(long, value_name = "N", default_value_t = 16384,
+              value_parser = clap::value_parser!(u32).range(0..=16384))]
+        max_paths: u32,
         /// Files solved at once, on that many threads (default: the cores of this machine;
         /// one with --out). The output is the same as one at a time, in the same order.
         #[arg(long, short = 'j', value_name = "N")]
@@ -285,10 +291,11 @@ fn main() -> ExitCode {
         Command::Navigate { input, output, sketch, max_solutions } => {
             navigate::run(&input, &output, sketch.as_deref(), max_solutions as usize)
         }
-        Command::Solve { format, out, all, max_solutions, choose, jobs, paths } => {
+        Command::Solve { format, out, all, max_solutions, choose, max_paths, jobs, paths } => {
             let options = gcs_solve::SolveOptions {
                 all: all.then_some(max_solutions as usize),
                 choose,
+                max_paths: max_paths as usize,
                 ..gcs_solve::SolveOptions::default()
             };
             solve::run(&paths, format, out.as_deref(), &options, jobs.unwrap_or_else(cores))

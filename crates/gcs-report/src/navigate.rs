@@ -27,7 +27,9 @@ use crate::{Report, ReportError, picture, run};
 /// The analysis or the solve failed, or the solve found no realization to show.
 pub fn navigate_page(system: &System, file: &str, limit: usize) -> Result<String, ReportError> {
     let (analysis, backend) = run::solving_analysis(system)?;
-    let options = SolveOptions { all: Some(limit.max(1)), ..SolveOptions::default() };
+    // (The page offers the closed-form steps' choices, the core as solved: its other
+    // realizations are not computed.)
+    let options = SolveOptions { all: Some(limit.max(1)), max_paths: 0, ..SolveOptions::default() };
     let solution = gcs_solve::solve(system, &analysis, &options).map_err(ReportError::Solve)?;
     let report = Report::new(system, file, &analysis, None);
     // The page chooses among the closed-form steps' candidates: the core as solved from the

@@ -39,13 +39,14 @@ pub struct PathCounts {
 /// can enumerate: a 3D core, entities with homogeneous coordinates or internal relations, a
 /// dimension whose measure is not polynomial, a core that is neither held in place nor
 /// floating rigidly with a point-to-point distance to hold it by, or more paths than
-/// [`homotopy::MAX_PATHS`].
+/// `max_paths` (or [`homotopy::MAX_PATHS`]).
 pub(crate) fn realizations(
     system: &System,
     layout: &Layout,
     equations: &Equations<'_>,
     core: &[ConstraintIdx],
     x: &[f64],
+    max_paths: usize,
     seed: u64,
 ) -> Option<(PathCounts, Vec<Vec<f64>>)> {
     if system.dim() != gcs_model::Dim::Two || core.is_empty() {
@@ -168,6 +169,10 @@ pub(crate) fn realizations(
         }
         (f, j)
     };
+    let paths = degrees.iter().try_fold(1usize, |p, &d| p.checked_mul(d as usize))?;
+    if paths > max_paths {
+        return None;
+    }
     let target = Target { n, degrees, eval: &eval };
     let ends = homotopy::solve(&target, seed)?;
     // The real ones, back in the layout's columns, checked against every equation.
@@ -229,7 +234,7 @@ mod tests {
         let eq = Equations::new(&s, &layout);
         let x: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
         let core: Vec<ConstraintIdx> = s.constraint_indices().collect();
-        realizations(&s, &layout, &eq, &core, &x, 7).unwrap()
+        realizations(&s, &layout, &eq, &core, &x, homotopy::MAX_PATHS, 7).unwrap()
     }
 
     /// The counts of Capco, Gallet, Grasegger, Koutschan, Lubbes and Schicho (2018), complex

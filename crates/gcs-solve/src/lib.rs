@@ -71,6 +71,10 @@ pub struct SolveOptions {
     /// when it is the core, takes its realization `c` (among those the homotopy enumerates,
     /// the solve's own first: [`PlanStep::paths`]).
     pub choose: Vec<(usize, usize)>,
+    /// With [`SolveOptions::all`] (or a choice of the core): the most homotopy paths the
+    /// core's enumeration may track ([`alternatives`]; at most [`homotopy::MAX_PATHS`]); 0
+    /// keeps the core as solved.
+    pub max_paths: usize,
 }
 
 impl Default for SolveOptions {
@@ -82,6 +86,7 @@ impl Default for SolveOptions {
             constructive: true,
             all: None,
             choose: Vec::new(),
+            max_paths: homotopy::MAX_PATHS,
         }
     }
 }
@@ -835,8 +840,15 @@ pub fn solve(
     if (options.all.is_some() || core_choice.is_some())
         && no_solution.is_empty()
         && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
-        && let Some((counts, found)) =
-            alternatives::realizations(system, &layout, &equations, &construction.core, &x, 0x5eed)
+        && let Some((counts, found)) = alternatives::realizations(
+            system,
+            &layout,
+            &equations,
+            &construction.core,
+            &x,
+            options.max_paths,
+            0x5eed,
+        )
         && let Some(step) = plan.first_mut()
     {
         // The solve's own realization first (the nearest; it is one of them when the
