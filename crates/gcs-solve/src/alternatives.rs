@@ -173,11 +173,53 @@ pub(crate) fn realizations(
     if paths > max_paths {
         return None;
     }
-    let target = Target { n, degrees, eval: &eval };
+    // In isotropic coordinates (u, v) = (x + iy, x − iy) of each point, a distance is
+    // bilinear, `(u_a − u_b)(v_a − v_b) = d²`: the start system is two-homogeneous in the u
+    // and the v (70 paths for K3,3 where the total degree has 256).
+    let points_only = entities.iter().filter(|&&e| !layout.columns(e).is_empty()).all(|&e| {
+        layout.columns(e).len() == 2 && system.entity(e).kind() == gcs_model::EntityKind::Point
+    }) && unknowns.len() % 2 == 0;
+    let half = C::new(0.5, 0.0);
+    let minus_half_i = C::new(0.0, -0.5);
+    let to_xy = |w: &[C]| -> Vec<C> {
+        let mut y = w.to_vec();
+        for q in 0..n / 2 {
+            let (u, v) = (w[2 * q], w[2 * q + 1]);
+            y[2 * q] = (u + v) * half;
+            y[2 * q + 1] = (u - v) * minus_half_i;
+        }
+        y
+    };
+    let iso = |w: &[C]| -> (Vec<C>, Vec<C>) {
+        let (f, j) = eval(&to_xy(w));
+        let mut jw = j.clone();
+        for r in 0..n {
+            for q in 0..n / 2 {
+                let (dx, dy) = (j[r * n + 2 * q], j[r * n + 2 * q + 1]);
+                jw[r * n + 2 * q] = dx * half + dy * minus_half_i;
+                jw[r * n + 2 * q + 1] = dx * half - dy * minus_half_i;
+            }
+        }
+        (f, jw)
+    };
+    let groups = if points_only {
+        let second: Vec<bool> = (0..n).map(|j| j % 2 == 1).collect();
+        bidegrees(&iso, n, &second, &mut rng).map(|b| (second, b))
+    } else {
+        None
+    };
+    let target = match groups {
+        Some(groups) if groups.1.iter().zip(&degrees).all(|(b, d)| b[0] + b[1] >= *d) => {
+            Target { n, degrees: degrees.clone(), eval: &iso, groups: Some(groups) }
+        }
+        _ => Target { n, degrees: degrees.clone(), eval: &eval, groups: None },
+    };
+    let isotropic = target.groups.is_some();
     let ends = homotopy::solve(&target, seed)?;
     // The real ones, back in the layout's columns, checked against every equation.
     let mut found: Vec<(f64, Vec<f64>)> = Vec::new();
     for s in &ends.solutions {
+        let s = if isotropic { to_xy(s) } else { s.clone() };
         let magnitude = 1.0 + s.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
         if s.iter().any(|v| !(v.im.abs() <= 1e-7 * magnitude)) {
             continue;
@@ -206,6 +248,56 @@ pub(crate) fn realizations(
         failed: ends.failed,
     };
     Some((counts, found.into_iter().map(|f| f.1).collect()))
+}
+
+/// The degree of each equation of `eval` in each group of unknowns (`second`), numerically:
+/// the equations restricted to a random line in one group's unknowns, through a random point,
+/// are polynomials in the line's parameter, read off at the eighth roots of unity (a discrete
+/// Fourier transform; a coefficient below 1e-9 of the largest is zero, so that rounding can only
+/// raise a degree). `None` when a degree may exceed 6.
+fn bidegrees(
+    eval: &dyn Fn(&[C]) -> (Vec<C>, Vec<C>),
+    n: usize,
+    second: &[bool],
+    rng: &mut gcs_model::rng::SplitMix64,
+) -> Option<Vec<[u32; 2]>> {
+    const N: usize = 8;
+    let mut random = || C::new(rng.unit_f64() - 0.5, rng.unit_f64() - 0.5);
+    let base: Vec<C> = (0..n).map(|_| random()).collect();
+    let mut out = vec![[0u32; 2]; n];
+    for g in 0..2 {
+        let dir: Vec<C> = (0..n)
+            .map(|j| if second[j] == (g == 1) { random() } else { C::new(0.0, 0.0) })
+            .collect();
+        let samples: Vec<Vec<C>> = (0..N)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / N as f64;
+                let s = C::new(a.cos(), a.sin());
+                let w: Vec<C> = base.iter().zip(&dir).map(|(b, d)| b + d * s).collect();
+                eval(&w).0
+            })
+            .collect();
+        for (i, o) in out.iter_mut().enumerate() {
+            let coefficients: Vec<f64> = (0..N)
+                .map(|j| {
+                    let c: C = (0..N)
+                        .map(|k| {
+                            let a = -std::f64::consts::TAU * (j * k) as f64 / N as f64;
+                            samples[k][i] * C::new(a.cos(), a.sin())
+                        })
+                        .sum();
+                    c.norm()
+                })
+                .collect();
+            let largest = coefficients.iter().fold(0.0f64, |m, c| m.max(*c));
+            let degree = coefficients.iter().rposition(|c| *c > 1e-9 * largest).unwrap_or(0);
+            if degree >= N - 1 {
+                return None;
+            }
+            o[g] = degree as u32;
+        }
+    }
+    Some(out)
 }
 
 #[cfg(test)]
@@ -245,8 +337,8 @@ mod tests {
         let points = [[0.3, 0.1], [5.1, -1.4], [2.2, 3.9], [4.7, 2.3], [-1.7, 3.1], [1.6, 6.7]];
         let k33 = [(0, 1), (0, 3), (0, 5), (2, 1), (2, 3), (2, 5), (4, 1), (4, 3), (4, 5)];
         let (counts, found) = count(&points, &k33);
-        // (Some paths to infinity end undecided: the count is found, but not proven complete.)
-        assert_eq!((counts.paths, counts.finite), (256, 16), "{counts:?}");
+        // Two-homogeneous in isotropic coordinates: C(8, 4) = 70 paths, not 2^8.
+        assert_eq!((counts.paths, counts.finite, counts.failed), (70, 16, 0), "{counts:?}");
         assert_eq!(counts.real, found.len());
         assert!(found.len() >= 2 && found.len() % 2 == 0, "{counts:?}");
         let x: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
@@ -254,7 +346,7 @@ mod tests {
         let prism = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)];
         let points = [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7]];
         let (counts, found) = count(&points, &prism);
-        assert_eq!((counts.finite, counts.failed), (24, 0), "{counts:?}");
+        assert_eq!((counts.paths, counts.finite, counts.failed), (70, 24, 0), "{counts:?}");
         assert_eq!(counts.real, found.len());
         // Every real one satisfies every distance.
         let s = framework(&points, &prism);

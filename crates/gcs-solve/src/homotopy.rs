@@ -6,7 +6,11 @@
 //!
 //! - The start system `G_i(x) = x_i^{d_i} − 1` has `Π d_i` solutions (products of roots of
 //!   unity), and Bézout's bound says the target system `F` has at most that many isolated
-//!   ones. The homotopy `H(x, t) = (1 − t)·γ·G(x) + t·F(x)` with a random complex `γ` has, with
+//!   ones. When the unknowns split into two groups in which the equations have low degrees
+//!   ([`Target::groups`]: a plane framework in isotropic coordinates, where a distance is
+//!   bilinear), the start system is two-homogeneous instead — each `G_i` a product of random
+//!   linear forms, as many in each group as `F_i`'s degree there — and has the (smaller)
+//!   two-homogeneous Bézout number of solutions, each found by two linear solves. The homotopy `H(x, t) = (1 − t)·γ·G(x) + t·F(x)` with a random complex `γ` has, with
 //!   probability one, no singular point for `t ∈ [0, 1)`: each start solution begins a smooth
 //!   path, and every isolated solution of `F` ends one of them.
 //! - Paths are tracked in projective space (`x = z / z₀` on a random affine chart
@@ -39,6 +43,13 @@ pub struct Target<'a> {
     pub n: usize,
     /// The total degree of each equation (at least 1).
     pub degrees: Vec<u32>,
+    /// When the unknowns split into two groups (`second[j]`: unknown `j` is in the second)
+    /// and each equation has degree `(a, b)` in them (`bidegrees[i]`, `a + b` at least its total
+    /// degree): the start system is then two-homogeneous — each equation a product of `a`
+    /// random linear forms in the first group and `b` in the second — with far fewer paths
+    /// than the total degree where the groups separate the variables of each term (a distance
+    /// in isotropic coordinates is bilinear).
+    pub groups: Option<(Vec<bool>, Vec<[u32; 2]>)>,
     /// Values and Jacobian at a point.
     pub eval: &'a dyn Fn(&[C]) -> (Vec<C>, Vec<C>),
 }
@@ -141,6 +152,17 @@ struct Homotopy<'a> {
     target: &'a Target<'a>,
     gamma: C,
     chart: Vec<C>,
+    /// The two-homogeneous start system: per equation, its linear factors, each with its
+    /// coefficients over `z` (`z₀` first); `None`: `z_i^d − z₀^d`.
+    factors: Option<Vec<Vec<Vec<C>>>>,
+}
+
+/// The degree used to homogenise equation `i`.
+fn hom_degree(h: &Homotopy<'_>, i: usize) -> i32 {
+    match (&h.factors, &h.target.groups) {
+        (Some(_), Some((_, b))) => (b[i][0] + b[i][1]).max(h.target.degrees[i]) as i32,
+        _ => h.target.degrees[i] as i32,
+    }
 }
 
 impl Homotopy<'_> {
@@ -155,7 +177,7 @@ impl Homotopy<'_> {
             (vec![C::new(0.0, 0.0); m], vec![C::new(0.0, 0.0); m * m], vec![C::new(0.0, 0.0); m]);
         let (s, u) = (C::new(1.0 - t, 0.0) * self.gamma, C::new(t, 0.0));
         for i in 0..n {
-            let d = self.target.degrees[i] as i32;
+            let d = hom_degree(self, i);
             // Homogenised target: z₀^d F(z/z₀); ∂/∂z_j = z₀^{d−1} ∂F/∂x_j;
             // ∂/∂z₀ = d z₀^{d−1} F − z₀^{d−2} Σ_j z_j ∂F/∂x_j.
             let zd1 = z0.powi(d - 1);
@@ -165,17 +187,36 @@ impl Homotopy<'_> {
                 euler += z[1 + j] * jf[i * n + j];
             }
             let dfh0 = C::new(d as f64, 0.0) * zd1 * f[i] - zd1 / z0 * euler;
-            // Homogenised start: z_i^d − z₀^d.
-            let gh = z[1 + i].powi(d) - z0.powi(d);
+            // Homogenised start and its gradient over z.
+            let (gh, dg) = match &self.factors {
+                None => {
+                    let mut dg = vec![C::new(0.0, 0.0); m];
+                    dg[0] = -C::new(d as f64, 0.0) * z0.powi(d - 1);
+                    dg[1 + i] = C::new(d as f64, 0.0) * z[1 + i].powi(d - 1);
+                    (z[1 + i].powi(d) - z0.powi(d), dg)
+                }
+                Some(factors) => {
+                    let f = &factors[i];
+                    let values: Vec<C> =
+                        f.iter().map(|c| c.iter().zip(z).map(|(a, b)| a * b).sum()).collect();
+                    let mut dg = vec![C::new(0.0, 0.0); m];
+                    for (k, c) in f.iter().enumerate() {
+                        let others: C = (0..f.len())
+                            .filter(|&l| l != k)
+                            .map(|l| values[l])
+                            .fold(C::new(1.0, 0.0), |a, b| a * b);
+                        for (j, a) in c.iter().enumerate() {
+                            dg[j] += a * others;
+                        }
+                    }
+                    (values.iter().fold(C::new(1.0, 0.0), |a, b| a * b), dg)
+                }
+            };
             h[i] = s * gh + u * fh;
             ht[i] = fh - self.gamma * gh;
-            hz[i * m] = s * (-C::new(d as f64, 0.0) * z0.powi(d - 1)) + u * dfh0;
+            hz[i * m] = s * dg[0] + u * dfh0;
             for j in 0..n {
-                let mut v = u * zd1 * jf[i * n + j];
-                if j == i {
-                    v += s * C::new(d as f64, 0.0) * z[1 + i].powi(d - 1);
-                }
-                hz[i * m + 1 + j] = v;
+                hz[i * m + 1 + j] = u * zd1 * jf[i * n + j] + s * dg[1 + j];
             }
         }
         let mut chart = C::new(-1.0, 0.0);
@@ -348,36 +389,23 @@ fn same_within(a: &[C], b: &[C], tolerance: f64) -> bool {
     d <= tolerance * (1.0 + norm(a))
 }
 
-/// Every isolated nonsingular solution of `target` (see the module documentation), with
-/// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
-/// [`MAX_PATHS`] paths.
-pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
-    let n = target.n;
+/// The start points of the total-degree start system (`z₀ = 1`, then roots of unity);
+/// `None` beyond [`MAX_PATHS`].
+fn total_degree_starts(target: &Target<'_>) -> Option<Vec<Vec<C>>> {
     let mut paths: usize = 1;
     for &d in &target.degrees {
         paths = paths.checked_mul(d.max(1) as usize).filter(|&p| p <= MAX_PATHS)?;
     }
-    let mut rng = SplitMix64::new(seed);
-    let mut unit = || {
-        let a = std::f64::consts::TAU * rng.unit_f64();
-        C::new(a.cos(), a.sin())
-    };
-    let gamma = unit();
-    let chart: Vec<C> = (0..=n).map(|_| unit()).collect();
-    let homotopy = Homotopy { target, gamma, chart: chart.clone() };
-    let mut ends = Ends { paths, ..Ends::default() };
-    let mut index = vec![0u32; n];
+    let mut index = vec![0u32; target.n];
+    let mut starts = Vec::with_capacity(paths);
     for _ in 0..paths {
-        // The start point: roots of unity, on the chart.
         let mut z = vec![C::new(1.0, 0.0)];
         for (i, &k) in index.iter().enumerate() {
             let d = target.degrees[i].max(1) as f64;
             let a = std::f64::consts::TAU * f64::from(k) / d;
             z.push(C::new(a.cos(), a.sin()));
         }
-        let s: C = chart.iter().zip(&z).map(|(a, b)| a * b).sum();
-        let z: Vec<C> = z.iter().map(|v| v / s).collect();
-        // The next combination.
+        starts.push(z);
         for (i, k) in index.iter_mut().enumerate() {
             *k += 1;
             if *k < target.degrees[i].max(1) {
@@ -385,6 +413,131 @@ pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
             }
             *k = 0;
         }
+    }
+    Some(starts)
+}
+
+/// The start points of a start system of products of linear factors (`z₀ = 1`): one factor of
+/// each equation vanishes, as many from the first group's factors as it has unknowns; each
+/// choice is two linear systems. `None` beyond [`MAX_PATHS`] (or for a singular choice, which
+/// random factors make improbable).
+fn product_starts(factors: &[Vec<Vec<C>>], second: &[bool]) -> Option<Vec<Vec<C>>> {
+    let n = second.len();
+    let in_first = second.iter().filter(|s| !**s).count();
+    // Depth first over the equations: (equation, factor) pairs chosen so far.
+    let mut starts = Vec::new();
+    let mut chosen: Vec<usize> = Vec::new();
+    let group = |i: usize, k: usize| -> usize {
+        // The factor's group: where its coefficients are nonzero.
+        let c = &factors[i][k];
+        usize::from((0..n).any(|j| second[j] && c[1 + j] != C::new(0.0, 0.0)))
+    };
+    let mut next = 0usize;
+    loop {
+        let depth = chosen.len();
+        if depth == factors.len() {
+            // Solve the two linear systems.
+            let mut z = vec![C::new(1.0, 0.0); n + 1];
+            for g in 0..2 {
+                let vars: Vec<usize> = (0..n).filter(|&j| usize::from(second[j]) == g).collect();
+                let rows: Vec<&Vec<C>> = chosen
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, k)| group(*i, **k) == g)
+                    .map(|(i, k)| &factors[i][*k])
+                    .collect();
+                let k = vars.len();
+                let a: Vec<C> = rows.iter().flat_map(|c| vars.iter().map(|&j| c[1 + j])).collect();
+                let b: Vec<C> = rows.iter().map(|c| -c[0]).collect();
+                let (x, _) = lu_solve(a, b, k)?;
+                for (v, &j) in x.iter().zip(&vars) {
+                    z[1 + j] = *v;
+                }
+            }
+            starts.push(z);
+            if starts.len() > MAX_PATHS {
+                return None;
+            }
+            next = chosen.pop().map_or(usize::MAX, |k| k + 1);
+        } else if next < factors[depth].len() {
+            let firsts = chosen.iter().enumerate().filter(|(i, k)| group(*i, **k) == 0).count();
+            let seconds = depth - firsts;
+            let g = group(depth, next);
+            if (g == 0 && firsts < in_first) || (g == 1 && seconds < n - in_first) {
+                chosen.push(next);
+                next = 0;
+            } else {
+                next += 1;
+            }
+        } else {
+            match chosen.pop() {
+                Some(k) => next = k + 1,
+                None => break,
+            }
+        }
+        if next == usize::MAX {
+            break;
+        }
+    }
+    Some(starts)
+}
+
+/// Every isolated nonsingular solution of `target` (see the module documentation), with
+/// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
+/// [`MAX_PATHS`] paths.
+pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
+    let n = target.n;
+    let mut rng = SplitMix64::new(seed);
+    let mut unit = || {
+        let a = std::f64::consts::TAU * rng.unit_f64();
+        C::new(a.cos(), a.sin())
+    };
+    let gamma = unit();
+    let chart: Vec<C> = (0..=n).map(|_| unit()).collect();
+    // The two-homogeneous start where it has fewer paths than the total degree.
+    let total = target.degrees.iter().try_fold(1usize, |p, &d| p.checked_mul(d.max(1) as usize));
+    let groups = target.groups.as_ref().filter(|(second, bidegrees)| {
+        let in_first = second.iter().filter(|s| !**s).count();
+        // Paths: the ways to choose one factor per equation, `in_first` of the first group.
+        let mut ways = vec![0usize; in_first + 1];
+        ways[0] = 1;
+        for b in bidegrees {
+            for k in (0..=in_first).rev() {
+                let from_first = if k > 0 { ways[k - 1].saturating_mul(b[0] as usize) } else { 0 };
+                ways[k] = ways[k].saturating_mul(b[1] as usize).saturating_add(from_first);
+            }
+        }
+        total.is_none_or(|t| ways[in_first] < t)
+    });
+    let (factors, starts) =
+        match groups {
+            None => (None, total_degree_starts(target)?),
+            Some((second, bidegrees)) => {
+                let mut factors: Vec<Vec<Vec<C>>> = Vec::new();
+                for b in bidegrees {
+                    let mut f = Vec::new();
+                    for (group, &count) in b.iter().enumerate() {
+                        for _ in 0..count {
+                            let mut c = vec![C::new(-1.0, 0.0)];
+                            c.extend(second.iter().map(|&s| {
+                                if s == (group == 1) { unit() } else { C::new(0.0, 0.0) }
+                            }));
+                            f.push(c);
+                        }
+                    }
+                    factors.push(f);
+                }
+                let starts = product_starts(&factors, second)?;
+                (Some(factors), starts)
+            }
+        };
+    let paths = starts.len();
+    let homotopy = Homotopy { target, gamma, chart: chart.clone(), factors };
+    let mut ends = Ends { paths, ..Ends::default() };
+    for z in starts {
+        // On the chart.
+        let s: C = chart.iter().zip(&z).map(|(a, b)| a * b).sum();
+        let z: Vec<C> = z.iter().map(|v| v / s).collect();
         // A path that ends at a solution another path reached jumped (each nonsingular
         // solution ends one path): tracked again with smaller steps, else failed.
         let mut result = None;
@@ -430,7 +583,7 @@ mod tests {
             let j = vec![x[0] * 2.0, x[1] * 2.0, (x[0] - c(6.0)) * 2.0, x[1] * 2.0];
             (f, j)
         };
-        let t = Target { n: 2, degrees: vec![2, 2], eval: &eval };
+        let t = Target { n: 2, degrees: vec![2, 2], eval: &eval, groups: None };
         let ends = solve(&t, 1).unwrap();
         assert_eq!(ends.paths, 4);
         assert!(ends.complete(), "{ends:?}");
@@ -445,18 +598,35 @@ mod tests {
                 vec![-x[0] * 2.0, c(1.0), c(-2.0), c(1.0)],
             )
         };
-        let t = Target { n: 2, degrees: vec![2, 1], eval: &eval };
+        let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
         let ends = solve(&t, 2).unwrap();
         assert!(ends.complete());
         assert_eq!(ends.solutions.len(), 2);
         assert!(ends.solutions.iter().all(|s| (s[0].im.abs() - 2.0).abs() < 1e-9));
     }
 
+    /// A bilinear system with a two-homogeneous start: `uv = 1`, `(u − 1)(v − 2) = 3` has two
+    /// paths (the total degree has four) and its two solutions, `u² = −1/2`, `v = −2u`.
+    #[test]
+    fn a_two_homogeneous_start_has_fewer_paths() {
+        let eval = |x: &[C]| {
+            let f = vec![x[0] * x[1] - c(1.0), (x[0] - c(1.0)) * (x[1] - c(2.0)) - c(3.0)];
+            (f, vec![x[1], x[0], x[1] - c(2.0), x[0] - c(1.0)])
+        };
+        let groups = Some((vec![false, true], vec![[1, 1], [1, 1]]));
+        let t = Target { n: 2, degrees: vec![2, 2], eval: &eval, groups };
+        let ends = solve(&t, 5).unwrap();
+        assert_eq!((ends.paths, ends.solutions.len(), ends.failed), (2, 2, 0), "{ends:?}");
+        for s in &ends.solutions {
+            assert!((s[0] * s[0] + c(0.5)).norm() < 1e-9 && (s[1] + s[0] * 2.0).norm() < 1e-9);
+        }
+    }
+
     /// A double root ends two paths: the count is not complete.
     #[test]
     fn a_double_root_makes_the_count_incomplete() {
         let eval = |x: &[C]| (vec![(x[0] - c(1.0)).powi(2)], vec![(x[0] - c(1.0)) * 2.0]);
-        let t = Target { n: 1, degrees: vec![2], eval: &eval };
+        let t = Target { n: 1, degrees: vec![2], eval: &eval, groups: None };
         // Both paths end at it: the second is reported failed.
         let ends = solve(&t, 3).unwrap();
         assert!(!ends.complete(), "{ends:?}");
@@ -466,7 +636,7 @@ mod tests {
     #[test]
     fn too_many_paths_are_not_attempted() {
         let eval = |x: &[C]| (x.to_vec(), vec![c(1.0); x.len() * x.len()]);
-        let t = Target { n: 15, degrees: vec![2; 15], eval: &eval };
+        let t = Target { n: 15, degrees: vec![2; 15], eval: &eval, groups: None };
         assert!(solve(&t, 4).is_none());
     }
 }

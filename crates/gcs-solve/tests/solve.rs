@@ -566,7 +566,7 @@ fn the_core_realizations_come_from_homotopy_continuation() {
     assert_eq!(sol.status, Status::Solved);
     let core = &sol.plan[0];
     let paths = core.paths.expect("the prism is enumerated");
-    assert_eq!((paths.paths, paths.finite, paths.failed), (256, 24, 0), "{paths:?}");
+    assert_eq!((paths.paths, paths.finite, paths.failed), (70, 24, 0), "{paths:?}");
     assert_eq!(core.candidates, paths.real);
     assert!(core.complete && core.candidates >= 2 && core.candidates % 2 == 0, "{core:?}");
     let all = sol.solutions.as_ref().unwrap();
