@@ -54,5 +54,21 @@ fn main() {
         }
         group.finish();
     }
+    {
+        // Enumeration of every realization (`--all`): the core by homotopy continuation (a
+        // 6-point core of 70 paths, an 8-point core of 924), the closed-form points on both
+        // sides.
+        let mut group = c.benchmark_group("enumerate-laman-core");
+        group.sampling_mode(SamplingMode::Flat).sample_size(10);
+        let all = SolveOptions { all: Some(10_000), ..SolveOptions::default() };
+        for n in [7, 8] {
+            let (system, _) = gcs_model::generate::laman_drawn(n, 1, 0.0);
+            let analysis = analyze(&system, &options()).expect("analysis");
+            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+                b.iter(|| black_box(solve(&system, &analysis, &all)))
+            });
+        }
+        group.finish();
+    }
     c.final_summary();
 }
