@@ -21,6 +21,10 @@ use num_traits::ToPrimitive;
 
 use crate::homotopy::{self, Target};
 
+/// The most unknowns a core may have to be enumerated (beyond, its homotopy would be
+/// hopeless anyway: at least 2^(n/2) paths for a framework).
+const MAX_UNKNOWNS: usize = 64;
+
 /// The paths of a node's homotopy and what they ended at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PathCounts {
@@ -38,8 +42,8 @@ pub struct PathCounts {
 /// nearest the solved `x` first, with the path counts. `None` when the core is not one this
 /// can enumerate: a 3D core, entities with homogeneous coordinates or internal relations, a
 /// dimension whose measure is not polynomial, a core that is neither held in place nor
-/// floating rigidly with a point-to-point distance to hold it by, or more paths than
-/// `max_paths` (or [`homotopy::MAX_PATHS`]).
+/// floating rigidly with a point-to-point distance to hold it by, more than 64 unknowns, or
+/// more paths than `max_paths` (or [`homotopy::MAX_PATHS`]).
 pub(crate) fn realizations(
     system: &System,
     layout: &Layout,
@@ -101,7 +105,7 @@ pub(crate) fn realizations(
         unknowns.extend(layout.columns(e).filter(|c| !held.contains(c)));
     }
     let n = unknowns.len();
-    if n == 0 {
+    if n == 0 || n > MAX_UNKNOWNS {
         return None;
     }
     let mut local = vec![usize::MAX; layout.ncols()];
@@ -129,6 +133,7 @@ pub(crate) fn realizations(
         .collect();
     let degrees: Vec<u32> = rows[..n].iter().map(|r| r.2).collect();
     let complex_base: Vec<C> = base.iter().map(|v| C::new(*v, 0.0)).collect();
+    let buffer = std::cell::RefCell::new(complex_base.clone());
     // What each constraint's rows are where it holds (computed once: the rows minus it are
     // `Equations::polynomial`).
     let mut targets: std::collections::HashMap<ConstraintIdx, C> = Default::default();
@@ -136,7 +141,8 @@ pub(crate) fn realizations(
         targets.insert(c, C::new(equations.target(c)?.to_f64()?, 0.0));
     }
     let eval = |y: &[C]| -> (Vec<C>, Vec<C>) {
-        let mut full = complex_base.clone();
+        // (The whole configuration, only the unknowns rewritten.)
+        let mut full = buffer.borrow_mut();
         for (i, &c) in unknowns.iter().enumerate() {
             full[c] = complex_base[c] + y[i] * size;
         }
