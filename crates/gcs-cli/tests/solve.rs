@@ -138,6 +138,53 @@ fn all_realizations_and_fixed_choices() {
     assert_eq!(code, 2);
 }
 
+/// `gcs solve --all` on the triangular prism, a core no closed-form step places: its real
+/// realizations come from homotopy continuation (70 paths, 24 complex solutions), each listed
+/// with the core candidate it is; `--choose 0=K` takes one; `--max-paths 0` keeps the core as
+/// solved.
+#[test]
+fn the_core_is_enumerated_by_homotopy_continuation() {
+    let (code, out, err) = gcs(&["solve", "--all", "--format", "json", "data/paper/prism.ron"]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    let core = &v["plan"][0];
+    assert_eq!(
+        (core["paths"]["tracked"].as_u64(), core["paths"]["finite"].as_u64()),
+        (Some(70), Some(24)),
+        "{core}"
+    );
+    assert_eq!(
+        (core["paths"]["failed"].as_u64(), core["complete"].as_bool()),
+        (Some(0), Some(true))
+    );
+    let real = core["paths"]["real"].as_u64().unwrap();
+    assert_eq!(core["candidates"].as_u64(), Some(real));
+    let solutions = v["solutions"].as_array().unwrap();
+    let cores: Vec<u64> =
+        v["core_choices"].as_array().unwrap().iter().map(|c| c.as_u64().unwrap()).collect();
+    assert_eq!(solutions.len() as u64, real);
+    assert_eq!(cores, (0..real).collect::<Vec<_>>());
+    let (_, text, _) = gcs(&["solve", "--all", "data/paper/prism.ron"]);
+    assert!(text.contains(&format!("the core's {real} real realizations — 24 complex")), "{text}");
+
+    let k = (real - 1).to_string();
+    let (code, out, _) =
+        gcs(&["solve", "--choose", &format!("0={k}"), "--format", "json", "data/paper/prism.ron"]);
+    assert_eq!(code, 0);
+    let chosen: Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(
+        (chosen["plan"][0]["chosen"].as_u64(), chosen["status"].as_str()),
+        (Some(real - 1), Some("solved"))
+    );
+    assert_eq!(chosen["entities"], solutions[(real - 1) as usize]);
+    let (code, out, _) =
+        gcs(&["solve", "--all", "--max-paths", "0", "--format", "json", "data/paper/prism.ron"]);
+    assert_eq!(code, 0);
+    let kept: Value = serde_json::from_str(out.trim()).unwrap();
+    assert!(kept["plan"][0].get("paths").is_none());
+    assert_eq!(kept["solutions"].as_array().unwrap().len(), 1);
+}
+
 /// `gcs solve --jobs N`: byte for byte the one-at-a-time output, in the same order.
 #[test]
 fn parallel_solves_are_the_sequential_run() {

@@ -343,7 +343,7 @@ impl SolveReport {
             let fixed = self.plan.iter().filter(|p| p.fixed).count();
             let core = match self.plan.first().and_then(|p| p.paths.as_ref().map(|c| (p, c))) {
                 Some((p, c)) => format!(
-                    "each of the core's {} real realizations ({} complex, by homotopy continuation on {} paths{})",
+                    "each of the core's {} real realizations — {} complex, by homotopy continuation on {} paths{} —",
                     p.candidates,
                     c.finite,
                     c.tracked,
