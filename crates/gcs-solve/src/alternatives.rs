@@ -133,7 +133,9 @@ pub(crate) fn realizations(
         .collect();
     let degrees: Vec<u32> = rows[..n].iter().map(|r| r.2).collect();
     let complex_base: Vec<C> = base.iter().map(|v| C::new(*v, 0.0)).collect();
-    let buffer = std::cell::RefCell::new(complex_base.clone());
+    // Configurations to evaluate at, one per thread at a time: the whole configuration, only
+    // the unknowns rewritten.
+    let pool: std::sync::Mutex<Vec<Vec<C>>> = std::sync::Mutex::new(Vec::new());
     // What each constraint's rows are where it holds (computed once: the rows minus it are
     // `Equations::polynomial`).
     let mut targets: std::collections::HashMap<ConstraintIdx, C> = Default::default();
@@ -141,8 +143,8 @@ pub(crate) fn realizations(
         targets.insert(c, C::new(equations.target(c)?.to_f64()?, 0.0));
     }
     let eval = |y: &[C]| -> (Vec<C>, Vec<C>) {
-        // (The whole configuration, only the unknowns rewritten.)
-        let mut full = buffer.borrow_mut();
+        let taken = pool.lock().ok().and_then(|mut p| p.pop());
+        let mut full = taken.unwrap_or_else(|| complex_base.clone());
         for (i, &c) in unknowns.iter().enumerate() {
             full[c] = complex_base[c] + y[i] * size;
         }
@@ -162,6 +164,9 @@ pub(crate) fn realizations(
                     jac[k * n + local[*col]] = v * size / unit;
                 }
             }
+        }
+        if let Ok(mut p) = pool.lock() {
+            p.push(full);
         }
         let mut f = values[..n].to_vec();
         let mut j = jac[..n * n].to_vec();

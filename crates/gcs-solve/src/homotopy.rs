@@ -51,7 +51,7 @@ pub struct Target<'a> {
     /// in isotropic coordinates is bilinear).
     pub groups: Option<(Vec<bool>, Vec<[u32; 2]>)>,
     /// Values and Jacobian at a point.
-    pub eval: &'a dyn Fn(&[C]) -> (Vec<C>, Vec<C>),
+    pub eval: &'a (dyn Fn(&[C]) -> (Vec<C>, Vec<C>) + Sync),
 }
 
 /// What the paths ended at.
@@ -534,29 +534,57 @@ pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
     let paths = starts.len();
     let homotopy = Homotopy { target, gamma, chart: chart.clone(), factors };
     let mut ends = Ends { paths, ..Ends::default() };
-    for z in starts {
-        // On the chart.
-        let s: C = chart.iter().zip(&z).map(|(a, b)| a * b).sum();
-        let z: Vec<C> = z.iter().map(|v| v / s).collect();
+    // On the chart.
+    let starts: Vec<Vec<C>> = starts
+        .into_iter()
+        .map(|z| {
+            let s: C = chart.iter().zip(&z).map(|(a, b)| a * b).sum();
+            z.iter().map(|v| v / s).collect()
+        })
+        .collect();
+    // The paths on the machine's cores (none spawned where threads do not exist), each
+    // thread a contiguous share; then merged in order, so that the result is the same on
+    // any number of cores.
+    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get).min(8);
+    let share = starts.len().div_ceil(threads.max(1)).max(1);
+    let first: Vec<End> = if threads <= 1 || starts.len() < 8 {
+        starts.iter().map(|z| end_of(target, &homotopy.track(z.clone(), 0.1))).collect()
+    } else {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = starts
+                .chunks(share)
+                .map(|chunk| {
+                    let homotopy = &homotopy;
+                    scope.spawn(move || {
+                        chunk
+                            .iter()
+                            .map(|z| end_of(target, &homotopy.track(z.clone(), 0.1)))
+                            .collect::<Vec<End>>()
+                    })
+                })
+                .collect();
+            handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
+        })
+    };
+    if first.len() != starts.len() {
+        // (A thread that failed: nothing is claimed.)
+        return None;
+    }
+    for (z, result) in starts.iter().zip(first) {
         // A path that ends at a solution another path reached jumped (each nonsingular
         // solution ends one path): tracked again with smaller steps, else failed.
-        let mut result = None;
-        for max_step in [0.1, 0.01] {
-            let track = homotopy.track(z.clone(), max_step);
-            result = Some(end_of(target, &track));
-            if let Some(End::Solution(x)) = &result
-                && ends.solutions.iter().any(|s| same(s, x))
-            {
-                continue;
+        let result = match result {
+            End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
+                end_of(target, &homotopy.track(z.clone(), 0.01))
             }
-            break;
-        }
+            other => other,
+        };
         match result {
-            Some(End::Solution(x)) if !ends.solutions.iter().any(|s| same(s, &x)) => {
+            End::Solution(x) if !ends.solutions.iter().any(|s| same(s, &x)) => {
                 ends.solutions.push(x);
             }
-            Some(End::Infinity) => ends.at_infinity += 1,
-            _ => ends.failed += 1,
+            End::Infinity => ends.at_infinity += 1,
+            End::Solution(_) | End::Failed => ends.failed += 1,
         }
     }
     Some(ends)
