@@ -175,9 +175,9 @@ enum Command {
         #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
         choose: Vec<(usize, usize)>,
         /// With --all or --choose 0=K: the most homotopy paths the core's enumeration may
-        /// track (the product of its equations' degrees; at most 16384, about 100 paths a
-        /// second); 0 keeps the core as solved.
-        #[arg(long, value_name = "N", default_value_t = 16384,
+        /// track (its start system's solutions; at most 16384, about 150 paths a second on
+        /// two cores); 0 keeps the core as solved.
+        #[arg(long, value_name = "N", default_value_t = 4096,
               value_parser = clap::value_parser!(u32).range(0..=16384))]
         max_paths: u32,
         /// Files solved at once, on that many threads (default: the cores of this machine;

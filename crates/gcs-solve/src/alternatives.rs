@@ -53,7 +53,7 @@ pub(crate) fn realizations(
     max_paths: usize,
     seed: u64,
 ) -> Option<(PathCounts, Vec<Vec<f64>>)> {
-    if system.dim() != gcs_model::Dim::Two || core.is_empty() {
+    if system.dim() != gcs_model::Dim::Two || core.is_empty() || max_paths == 0 {
         return None;
     }
     let mut entities: Vec<EntityIdx> =
@@ -180,10 +180,6 @@ pub(crate) fn realizations(
         }
         (f, j)
     };
-    let paths = degrees.iter().try_fold(1usize, |p, &d| p.checked_mul(d as usize))?;
-    if paths > max_paths {
-        return None;
-    }
     // In isotropic coordinates (u, v) = (x + iy, x − iy) of each point, a distance is
     // bilinear, `(u_a − u_b)(v_a − v_b) = d²`: the start system is two-homogeneous in the u
     // and the v (70 paths for K3,3 where the total degree has 256).
@@ -226,7 +222,7 @@ pub(crate) fn realizations(
         _ => Target { n, degrees: degrees.clone(), eval: &eval, groups: None },
     };
     let isotropic = target.groups.is_some();
-    let ends = homotopy::solve(&target, seed)?;
+    let ends = homotopy::solve(&target, seed, max_paths)?;
     // The real ones, back in the layout's columns, checked against every equation.
     let mut found: Vec<(f64, Vec<f64>)> = Vec::new();
     for s in &ends.solutions {

@@ -484,8 +484,8 @@ fn product_starts(factors: &[Vec<Vec<C>>], second: &[bool]) -> Option<Vec<Vec<C>
 
 /// Every isolated nonsingular solution of `target` (see the module documentation), with
 /// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
-/// [`MAX_PATHS`] paths.
-pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
+/// `max_paths` (or [`MAX_PATHS`]) paths.
+pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
     let n = target.n;
     let mut rng = SplitMix64::new(seed);
     let mut unit = || {
@@ -532,6 +532,9 @@ pub fn solve(target: &Target<'_>, seed: u64) -> Option<Ends> {
             }
         };
     let paths = starts.len();
+    if paths > max_paths {
+        return None;
+    }
     let homotopy = Homotopy { target, gamma, chart: chart.clone(), factors };
     let mut ends = Ends { paths, ..Ends::default() };
     // On the chart.
@@ -612,7 +615,7 @@ mod tests {
             (f, j)
         };
         let t = Target { n: 2, degrees: vec![2, 2], eval: &eval, groups: None };
-        let ends = solve(&t, 1).unwrap();
+        let ends = solve(&t, 1, MAX_PATHS).unwrap();
         assert_eq!(ends.paths, 4);
         assert!(ends.complete(), "{ends:?}");
         assert_eq!(ends.solutions.len(), 2, "{ends:?}");
@@ -627,7 +630,7 @@ mod tests {
             )
         };
         let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
-        let ends = solve(&t, 2).unwrap();
+        let ends = solve(&t, 2, MAX_PATHS).unwrap();
         assert!(ends.complete());
         assert_eq!(ends.solutions.len(), 2);
         assert!(ends.solutions.iter().all(|s| (s[0].im.abs() - 2.0).abs() < 1e-9));
@@ -643,7 +646,7 @@ mod tests {
         };
         let groups = Some((vec![false, true], vec![[1, 1], [1, 1]]));
         let t = Target { n: 2, degrees: vec![2, 2], eval: &eval, groups };
-        let ends = solve(&t, 5).unwrap();
+        let ends = solve(&t, 5, MAX_PATHS).unwrap();
         assert_eq!((ends.paths, ends.solutions.len(), ends.failed), (2, 2, 0), "{ends:?}");
         for s in &ends.solutions {
             assert!((s[0] * s[0] + c(0.5)).norm() < 1e-9 && (s[1] + s[0] * 2.0).norm() < 1e-9);
@@ -656,7 +659,7 @@ mod tests {
         let eval = |x: &[C]| (vec![(x[0] - c(1.0)).powi(2)], vec![(x[0] - c(1.0)) * 2.0]);
         let t = Target { n: 1, degrees: vec![2], eval: &eval, groups: None };
         // Both paths end at it: the second is reported failed.
-        let ends = solve(&t, 3).unwrap();
+        let ends = solve(&t, 3, MAX_PATHS).unwrap();
         assert!(!ends.complete(), "{ends:?}");
     }
 
@@ -665,6 +668,10 @@ mod tests {
     fn too_many_paths_are_not_attempted() {
         let eval = |x: &[C]| (x.to_vec(), vec![c(1.0); x.len() * x.len()]);
         let t = Target { n: 15, degrees: vec![2; 15], eval: &eval, groups: None };
-        assert!(solve(&t, 4).is_none());
+        assert!(solve(&t, 4, MAX_PATHS).is_none());
+        // And a bound below the paths is kept.
+        let eval = |x: &[C]| (vec![x[0] * x[0] - c(2.0)], vec![x[0] * 2.0]);
+        let t = Target { n: 1, degrees: vec![2], eval: &eval, groups: None };
+        assert!(solve(&t, 4, 1).is_none() && solve(&t, 4, 2).is_some());
     }
 }

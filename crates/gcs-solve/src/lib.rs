@@ -77,6 +77,9 @@ pub struct SolveOptions {
     pub max_paths: usize,
 }
 
+/// The default of [`SolveOptions::max_paths`]: about half a minute of paths on two cores.
+pub const DEFAULT_PATHS: usize = 4096;
+
 impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
@@ -86,7 +89,7 @@ impl Default for SolveOptions {
             constructive: true,
             all: None,
             choose: Vec::new(),
-            max_paths: homotopy::MAX_PATHS,
+            max_paths: DEFAULT_PATHS,
         }
     }
 }
@@ -851,21 +854,23 @@ pub fn solve(
         )
         && let Some(step) = plan.first_mut()
     {
-        // The solve's own realization first (the nearest; it is one of them when the
-        // homotopy found it).
+        // The solve's own realization first: it stands for the homotopy's copy of it (the
+        // nearest), or is added where the paths missed it.
+        let mut found = found;
+        let near = found
+            .first()
+            .is_some_and(|f| f.iter().zip(&x).all(|(a, b)| (a - b).abs() <= 1e-7 * scale));
+        if near {
+            found[0] = x.clone();
+        } else {
+            found.insert(0, x.clone());
+        }
         step.candidates = found.len();
-        step.complete = counts.failed == 0;
+        step.complete = counts.failed == 0 && near;
         step.paths = Some(counts);
         enumerated = true;
-        if !found.is_empty() {
-            // The solve's own realization stands for the homotopy's copy of it.
-            let near = found[0].iter().zip(&x).all(|(a, b)| (a - b).abs() <= 1e-7 * scale);
-            cores = found;
-            if near {
-                cores[0] = x.clone();
-            }
-            core_ids = (0..cores.len()).collect();
-        }
+        core_ids = (0..found.len()).collect();
+        cores = found;
     }
     // A fixed choice of the core: one of its realizations (the solve's own is 0).
     if let Some(k) = core_choice {
