@@ -177,17 +177,8 @@ fn an_equilateral_triangle_takes_the_next_prime() {
         EqualLength(id: "e1", a: "ca", b: "ab"), EqualLength(id: "e2", a: "ca", b: "bc"),
         Distance(id: "d", a: "b2", b: "c2", value: 2)])"#;
     let s = System::from_ron_str(TRIANGLE, None).unwrap();
-    let float = analyze(
-        &s,
-        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
-    )
-    .unwrap();
-    assert!(float.well_constrained());
-    for backend in [Backend::Exact, Backend::ModP] {
-        let a = analyze(&s, &AnalysisOptions { backend, decompose: true, ..Default::default() })
-            .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
-        assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
-        assert_eq!(a.witness.modulus, Some(gcs_rank::WITNESS_PRIMES[1]), "{backend:?}");
+    let (float, modular) = modular_where_3_is_a_square(&s, true);
+    for (backend, a) in modular {
         assert!(a.well_constrained(), "{backend:?}");
         assert_eq!((a.rank, a.dof, a.trivial_motions), (float.rank, 0, float.trivial_motions));
         let bound = a.witness_error_bound.expect("a modular witness says how sure it is");
@@ -222,18 +213,35 @@ fn an_inscribed_triangle_closes_as_a_polynomial_system() {
         DistanceX(id: "cx", a: "o", b: "k.center", value: -1.296695),
         DistanceY(id: "cy", a: "o", b: "k.center", value: -39.022106)])"#;
     let s = System::from_ron_str(INSCRIBED, None).unwrap();
+    let (float, modular) = modular_where_3_is_a_square(&s, false);
+    for (backend, a) in modular {
+        assert!(a.well_constrained(), "{backend:?}");
+        assert_eq!((a.rank, a.dof), (float.rank, float.dof), "{backend:?}");
+    }
+}
+
+/// `s` is well-constrained in floating point, and exact and modp analyse it at a modular witness
+/// modulo the second witness prime (the first where 3 is a square): the float analysis, and each
+/// backend's.
+fn modular_where_3_is_a_square(
+    s: &System,
+    decompose: bool,
+) -> (gcs_analysis::Analysis, Vec<(Backend, gcs_analysis::Analysis)>) {
     let float = analyze(
-        &s,
+        s,
         &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
     )
     .unwrap();
     assert!(float.well_constrained());
-    for backend in [Backend::Exact, Backend::ModP] {
-        let a = analyze(&s, &AnalysisOptions { backend, ..Default::default() })
-            .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
-        assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
-        assert_eq!(a.witness.modulus, Some(gcs_rank::WITNESS_PRIMES[1]), "{backend:?}");
-        assert!(a.well_constrained(), "{backend:?}");
-        assert_eq!((a.rank, a.dof), (float.rank, float.dof), "{backend:?}");
-    }
+    let modular = [Backend::Exact, Backend::ModP]
+        .into_iter()
+        .map(|backend| {
+            let a = analyze(s, &AnalysisOptions { backend, decompose, ..Default::default() })
+                .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
+            assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
+            assert_eq!(a.witness.modulus, Some(gcs_rank::WITNESS_PRIMES[1]), "{backend:?}");
+            (backend, a)
+        })
+        .collect();
+    (float, modular)
 }
