@@ -138,45 +138,62 @@ fn all_realizations_and_fixed_choices() {
     assert_eq!(code, 2);
 }
 
-/// `gcs solve --all` on the triangular prism, a core no closed-form step places: its real
-/// realizations come from homotopy continuation (70 paths, 24 complex solutions), each listed
-/// with the core candidate it is; `--choose 0=K` takes one; `--max-paths 0` keeps the core as
-/// solved.
+/// `gcs solve --all` on the triangular prism, a core no closed-form step places: its DR-plan
+/// is its two triangles (steps 0 and 1, 2 paths each) and their assembly as rigid bodies (step
+/// 2, 6 paths: with the triangles' 2 × 2 realizations, Capco et al.'s 24 complex ones); every
+/// realization is listed with the candidate of each node; `--choose 0=1` flips the first
+/// triangle and the assembly follows; `--max-paths 0` keeps the core as solved.
 #[test]
 fn the_core_is_enumerated_by_homotopy_continuation() {
     let (code, out, err) = gcs(&["solve", "--all", "--format", "json", "data/paper/prism.ron"]);
     assert_eq!(code, 0, "{err}");
     let v: Value = serde_json::from_str(out.trim()).unwrap();
-    let core = &v["plan"][0];
+    let plan = v["plan"].as_array().unwrap();
+    let tracked =
+        |k: usize| (plan[k]["paths"]["tracked"].as_u64(), plan[k]["paths"]["finite"].as_u64());
     assert_eq!(
-        (core["paths"]["tracked"].as_u64(), core["paths"]["finite"].as_u64()),
-        (Some(70), Some(24)),
-        "{core}"
+        (tracked(0), tracked(1), tracked(2)),
+        ((Some(2), Some(2)), (Some(2), Some(2)), (Some(6), Some(6))),
+        "{v}"
     );
-    assert_eq!(
-        (core["paths"]["failed"].as_u64(), core["complete"].as_bool()),
-        (Some(0), Some(true))
-    );
-    let real = core["paths"]["real"].as_u64().unwrap();
-    assert_eq!(core["candidates"].as_u64(), Some(real));
+    assert_eq!(plan[2]["children"], serde_json::json!([0, 1]));
+    assert!(plan[..3].iter().all(|p| p["complete"] == true && p["paths"]["failed"] == 0));
+    let real = plan[2]["paths"]["real"].as_u64().unwrap();
+    assert_eq!(plan[2]["candidates"].as_u64(), Some(real));
     let solutions = v["solutions"].as_array().unwrap();
-    let cores: Vec<u64> =
-        v["core_choices"].as_array().unwrap().iter().map(|c| c.as_u64().unwrap()).collect();
-    assert_eq!(solutions.len() as u64, real);
-    assert_eq!(cores, (0..real).collect::<Vec<_>>());
+    let nodes: Vec<Vec<u64>> = (v["node_choices"].as_array().unwrap().iter())
+        .map(|c| c.as_array().unwrap().iter().map(|k| k.as_u64().unwrap()).collect())
+        .collect();
+    assert_eq!(nodes.len(), solutions.len());
+    assert_eq!(nodes[0], vec![0, 0, 0], "the drawing's realization first");
+    // Each triangle at each of its two sides; per pair, the assembly's real candidates.
+    for a in 0..2 {
+        for b in 0..2 {
+            assert!(nodes.iter().any(|c| c[0] == a && c[1] == b), "{nodes:?}");
+        }
+    }
+    let at_drawn = nodes.iter().filter(|c| c[0] == 0 && c[1] == 0).count() as u64;
+    assert_eq!(at_drawn, real);
     let (_, text, _) = gcs(&["solve", "--all", "data/paper/prism.ron"]);
-    assert!(text.contains(&format!("the core's {real} real realizations — 24 complex")), "{text}");
+    assert!(
+        text.contains("the core assembled along its DR-plan: step 0: 2 real of 2 complex"),
+        "{text}"
+    );
 
-    let k = (real - 1).to_string();
+    let flipped = nodes.iter().position(|c| c[..2] == [1, 0] && c[2] == 0).unwrap();
     let (code, out, _) =
-        gcs(&["solve", "--choose", &format!("0={k}"), "--format", "json", "data/paper/prism.ron"]);
+        gcs(&["solve", "--choose", "0=1", "--format", "json", "data/paper/prism.ron"]);
     assert_eq!(code, 0);
     let chosen: Value = serde_json::from_str(out.trim()).unwrap();
     assert_eq!(
-        (chosen["plan"][0]["chosen"].as_u64(), chosen["status"].as_str()),
-        (Some(real - 1), Some("solved"))
+        (chosen["plan"][0]["chosen"].as_u64(), chosen["plan"][0]["fixed"].as_bool()),
+        (Some(1), Some(true))
     );
-    assert_eq!(chosen["entities"], solutions[(real - 1) as usize]);
+    assert_eq!(chosen["status"], "solved");
+    assert_eq!(chosen["entities"], solutions[flipped]);
+    let (code, _, err) = gcs(&["solve", "--choose", "2=99", "data/paper/prism.ron"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("cannot choose candidate 99 of step 2"), "{err}");
     let (code, out, _) =
         gcs(&["solve", "--all", "--max-paths", "0", "--format", "json", "data/paper/prism.ron"]);
     assert_eq!(code, 0);

@@ -60,6 +60,10 @@ pub struct PlanReport {
     /// With `--all`, for a core enumerated by homotopy continuation: its paths.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paths: Option<PathsReport>,
+    /// For a node of the core's DR-plan assembled from others: their steps (indices in
+    /// `plan`), whose chosen realizations it places as rigid bodies; absent otherwise.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub children: Vec<usize>,
 }
 
 /// The paths of a core's homotopy (`gcs solve --all`) and what they ended at.
@@ -123,9 +127,14 @@ pub struct SolveReport {
     /// With `--all`: whether the enumeration stopped at `--max-solutions`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncated: Option<bool>,
-    /// With `--all`: for each of `solutions`, the core's candidate it is built on.
+    /// With `--all`: for each of `solutions`, the core's candidate it is built on (for a core
+    /// split into several DR-plan nodes, the candidate of its last node, the whole core).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub core_choices: Option<Vec<usize>>,
+    /// With `--all`: for each of `solutions`, the candidate of each node of the core's DR-plan
+    /// (the first steps of `plan`), a node's counted among those its children's choices give.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub node_choices: Option<Vec<Vec<usize>>>,
     /// For a model read from a CAD file: the import section (flattened into the line).
     #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
     pub import: Option<crate::ImportReport>,
@@ -232,6 +241,7 @@ impl SolveReport {
                     real: c.real,
                     failed: c.failed,
                 }),
+                children: p.children.clone(),
             })
             .collect();
         let shape = |x: &[f64]| -> Vec<Value> {
@@ -273,6 +283,7 @@ impl SolveReport {
                 .map(|all| all.iter().map(|x| shape(x)).collect()),
             truncated: solution.solutions.as_ref().map(|_| solution.truncated),
             core_choices: solution.core_choices.clone(),
+            node_choices: solution.node_choices.clone(),
             import: None,
         }
     }
@@ -341,7 +352,36 @@ impl SolveReport {
         }
         if let Some(solutions) = &self.solutions {
             let fixed = self.plan.iter().filter(|p| p.fixed).count();
+            let nodes = self.plan.iter().take_while(|p| p.method == "newton").count();
             let core = match self.plan.first().and_then(|p| p.paths.as_ref().map(|c| (p, c))) {
+                Some(_) if nodes > 1 => format!(
+                    "the core assembled along its DR-plan: {} —",
+                    (self.plan[..nodes].iter().enumerate())
+                        .map(|(k, p)| {
+                            let how = match &p.paths {
+                                Some(c) => format!(
+                                    "{} real of {} complex on {} paths{}",
+                                    p.candidates,
+                                    c.finite,
+                                    c.tracked,
+                                    if c.failed > 0 { ", some undecided" } else { "" }
+                                ),
+                                None => format!("{} as solved", p.candidates),
+                            };
+                            if p.children.is_empty() {
+                                format!("step {k}: {how}")
+                            } else {
+                                let children: Vec<String> =
+                                    p.children.iter().map(|c| c.to_string()).collect();
+                                format!(
+                                    "step {k} (steps {} as rigid bodies): {how}",
+                                    children.join(", ")
+                                )
+                            }
+                        })
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                ),
                 Some((p, c)) => format!(
                     "each of the core's {} real realizations — {} complex, by homotopy continuation on {} paths{} —",
                     p.candidates,

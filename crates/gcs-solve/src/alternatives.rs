@@ -108,61 +108,271 @@ pub(crate) fn realizations(
     if n == 0 || n > MAX_UNKNOWNS {
         return None;
     }
-    let mut local = vec![usize::MAX; layout.ncols()];
-    for (i, &c) in unknowns.iter().enumerate() {
-        local[c] = i;
+    let size = unknowns.iter().fold(0.0f64, |m, &c| m.max(base[c].abs())).max(1.0);
+    // Points only, each an (x, y) pair: isotropic coordinates apply.
+    let paired = entities.iter().filter(|&&e| !layout.columns(e).is_empty()).all(|&e| {
+        layout.columns(e).len() == 2 && system.entity(e).kind() == gcs_model::EntityKind::Point
+    }) && n % 2 == 0;
+    let param = Param {
+        n,
+        base,
+        map: unknowns.iter().enumerate().map(|(i, &c)| (c, vec![(i, size)])).collect(),
+        extra: Vec::new(),
+        paired,
+        size,
+    };
+    let equations_of: Vec<ConstraintIdx> =
+        core.iter().copied().filter(|&c| Some(c) != gauge).collect();
+    solve_param(layout, equations, &equations_of, core, &param, x, max_paths, seed)
+}
+
+/// Every real placement of rigid bodies and free points that satisfies `constraints`: a node
+/// of the core's DR-plan ([`crate::nodes`]), its children as rigid bodies at the
+/// configurations given (`bodies`: each child's points and a configuration they are placed in),
+/// the points on no child free (`free`), the node's own constraints between them. The first
+/// body is held where it is (the reference: realizations up to direct isometries); each other
+/// body moves by a rotation and a translation (four unknowns, `cos² + sin² = 1`), never a
+/// reflection (its mirror image is a realization of the child, chosen there); a point two
+/// bodies share is where the first of them puts it, and the others must agree (two linear
+/// equations). Whole configurations, `x` outside the node, nearest to `x` first.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn assemble(
+    layout: &Layout,
+    equations: &Equations<'_>,
+    bodies: &[(Vec<EntityIdx>, &[f64])],
+    free: &[EntityIdx],
+    constraints: &[ConstraintIdx],
+    x: &[f64],
+    max_paths: usize,
+    seed: u64,
+) -> Option<(PathCounts, Vec<Vec<f64>>)> {
+    let (reference, moving) = bodies.split_first()?;
+    let xy = |config: &[f64], p: EntityIdx| -> Option<[f64; 2]> {
+        let cols = layout.columns(p);
+        (cols.len() == 2).then(|| [config[cols.start], config[cols.start + 1]])
+    };
+    let mut base = x.to_vec();
+    let mut size = 1.0f64;
+    for (points, config) in bodies {
+        for &p in points {
+            let [a, b] = xy(config, p)?;
+            size = size.max(a.abs()).max(b.abs());
+        }
     }
-    // The equations (constraint, row, degree), highest degree first.
-    let mut rows: Vec<(ConstraintIdx, usize, u32)> = Vec::new();
-    for &c in core.iter().filter(|&&c| Some(c) != gauge) {
+    for &p in free {
+        let [a, b] = xy(x, p)?;
+        size = size.max(a.abs()).max(b.abs());
+    }
+    // Where each point is, as an affine function of the unknowns: a constant and terms, for
+    // x and for y.
+    type Affine = ([f64; 2], [Vec<(usize, f64)>; 2]);
+    let mut owner: std::collections::HashMap<EntityIdx, Affine> = Default::default();
+    for &p in &reference.0 {
+        let at = xy(reference.1, p)?;
+        let cols = layout.columns(p);
+        (base[cols.start], base[cols.start + 1]) = (at[0], at[1]);
+        owner.entry(p).or_insert((at, [Vec::new(), Vec::new()]));
+    }
+    let mut map: Vec<(usize, Vec<(usize, f64)>)> = Vec::new();
+    let mut extra: Vec<Extra> = Vec::new();
+    let mut n = 0;
+    // A point placed twice: its two affine forms agree, as u = x + iy and v = x − iy.
+    let agree = |first: &Affine, second: &Affine, extra: &mut Vec<Extra>| {
+        for sign in [1.0, -1.0] {
+            let i = C::new(0.0, sign);
+            let constant =
+                (C::new(first.0[0] - second.0[0], 0.0) + i * (first.0[1] - second.0[1])) / size;
+            let mut terms: Vec<(usize, C)> = Vec::new();
+            for (form, w) in [(first, 1.0), (second, -1.0)] {
+                terms.extend(form.1[0].iter().map(|(j, c)| (*j, C::new(w * c / size, 0.0))));
+                terms.extend(form.1[1].iter().map(|(j, c)| (*j, i * (w * c / size))));
+            }
+            extra.push(Extra::Linear(constant, terms));
+        }
+    };
+    for (points, config) in moving {
+        let (c, s, tx, ty) = (n, n + 1, n + 2, n + 3);
+        n += 4;
+        extra.push(Extra::Rotation(c, s));
+        let mut centre = [0.0, 0.0];
+        for &p in points {
+            let at = xy(config, p)?;
+            centre[0] += at[0] / points.len() as f64;
+            centre[1] += at[1] / points.len() as f64;
+        }
+        for &p in points {
+            let at = xy(config, p)?;
+            let (px, py) = (at[0] - centre[0], at[1] - centre[1]);
+            let form: Affine =
+                (centre, [vec![(c, px), (s, -py), (tx, size)], vec![(c, py), (s, px), (ty, size)]]);
+            match owner.get(&p) {
+                Some(first) => agree(first, &form, &mut extra),
+                None => {
+                    let cols = layout.columns(p);
+                    (base[cols.start], base[cols.start + 1]) = (centre[0], centre[1]);
+                    map.push((cols.start, form.1[0].clone()));
+                    map.push((cols.start + 1, form.1[1].clone()));
+                    owner.insert(p, form);
+                }
+            }
+        }
+    }
+    for &p in free {
+        if owner.contains_key(&p) {
+            continue;
+        }
+        let cols = layout.columns(p);
+        map.push((cols.start, vec![(n, size)]));
+        map.push((cols.start + 1, vec![(n + 1, size)]));
+        owner.insert(p, ([x[cols.start], x[cols.start + 1]], [Vec::new(), Vec::new()]));
+        n += 2;
+    }
+    let param = Param { n, base, map, extra, paired: true, size };
+    solve_param(layout, equations, constraints, constraints, &param, x, max_paths, seed)
+}
+
+/// An affine parametrisation of part of a configuration by `n` unknowns `y`: layout column
+/// `col` of `map` is `base[col] + Σ coefficient·y_j`, every other column stays at `base`. With
+/// `paired`, unknowns `2q` and `2q + 1` are the two coordinates of a point, of a translation or
+/// the cosine and sine of a rotation — pairs whose isotropic coordinates `a ± ib` make
+/// distances bilinear. `extra` are equations of the parametrisation itself. Unknowns are in
+/// units of `size`.
+struct Param {
+    n: usize,
+    base: Vec<f64>,
+    map: Vec<(usize, Vec<(usize, f64)>)>,
+    extra: Vec<Extra>,
+    paired: bool,
+    size: f64,
+}
+
+/// An equation of a parametrisation.
+enum Extra {
+    /// `y_a² + y_b² − 1 = 0`: the cosine and sine of a rotation.
+    Rotation(usize, usize),
+    /// `constant + Σ coefficient·y_j = 0`, in units of the size: one of the two isotropic
+    /// coordinates of a point two rigid bodies share, the same from both.
+    Linear(C, Vec<(usize, C)>),
+}
+
+impl Extra {
+    fn degree(&self) -> u32 {
+        match self {
+            Extra::Rotation(..) => 2,
+            Extra::Linear(..) => 1,
+        }
+    }
+
+    /// Its value and gradient at `y`.
+    fn eval(&self, y: &[C], gradient: &mut [C]) -> C {
+        match self {
+            Extra::Rotation(a, b) => {
+                gradient[*a] += y[*a] * 2.0;
+                gradient[*b] += y[*b] * 2.0;
+                y[*a] * y[*a] + y[*b] * y[*b] - 1.0
+            }
+            Extra::Linear(constant, terms) => {
+                let mut v = *constant;
+                for (j, w) in terms {
+                    gradient[*j] += w;
+                    v += w * y[*j];
+                }
+                v
+            }
+        }
+    }
+}
+
+/// A row of a node's square system: row `k` of a constraint, or an equation of the
+/// parametrisation.
+#[derive(Clone, Copy)]
+enum Row {
+    Constraint(ConstraintIdx, usize),
+    Extra(usize),
+}
+
+/// Every real solution of `constraints` (and of the parametrisation's own equations) over
+/// `param`, as whole configurations (`x` outside the parametrised columns), nearest to `x`
+/// first, each checked against every constraint of `check`.
+#[allow(clippy::too_many_arguments)]
+fn solve_param(
+    layout: &Layout,
+    equations: &Equations<'_>,
+    constraints: &[ConstraintIdx],
+    check: &[ConstraintIdx],
+    param: &Param,
+    x: &[f64],
+    max_paths: usize,
+    seed: u64,
+) -> Option<(PathCounts, Vec<Vec<f64>>)> {
+    let n = param.n;
+    let size = param.size;
+    if n == 0 || n > MAX_UNKNOWNS {
+        return None;
+    }
+    let mut slot = vec![usize::MAX; layout.ncols()];
+    for (k, (col, _)) in param.map.iter().enumerate() {
+        slot[*col] = k;
+    }
+    // The equations (row, degree), highest degree first.
+    let mut rows: Vec<(Row, u32)> = Vec::new();
+    for &c in constraints {
         let degrees = equations.degrees(c)?;
-        rows.extend(degrees.into_iter().enumerate().map(|(k, d)| (c, k, d)));
+        rows.extend(degrees.into_iter().enumerate().map(|(k, d)| (Row::Constraint(c, k), d)));
     }
-    rows.retain(|r| r.2 > 0);
+    rows.extend(param.extra.iter().enumerate().map(|(k, e)| (Row::Extra(k), e.degree())));
+    rows.retain(|r| r.1 > 0);
     if rows.len() < n {
         return None;
     }
-    rows.sort_by_key(|r| std::cmp::Reverse(r.2));
-    let size = unknowns.iter().fold(0.0f64, |m, &c| m.max(base[c].abs())).max(1.0);
+    rows.sort_by_key(|r| std::cmp::Reverse(r.1));
     let mut rng = gcs_model::rng::SplitMix64::new(seed ^ 0xA17E_57A7);
     // Row i of the square system: equation i plus random multiples of the extra ones.
-    let extra: Vec<Vec<C>> = (0..n)
+    let folded: Vec<Vec<C>> = (0..n)
         .map(|_| {
             (n..rows.len()).map(|_| C::new(rng.unit_f64() - 0.5, rng.unit_f64() - 0.5)).collect()
         })
         .collect();
-    let degrees: Vec<u32> = rows[..n].iter().map(|r| r.2).collect();
-    let complex_base: Vec<C> = base.iter().map(|v| C::new(*v, 0.0)).collect();
+    let degrees: Vec<u32> = rows[..n].iter().map(|r| r.1).collect();
+    let complex_base: Vec<C> = param.base.iter().map(|v| C::new(*v, 0.0)).collect();
     // Configurations to evaluate at, one per thread at a time: the whole configuration, only
-    // the unknowns rewritten.
+    // the parametrised columns rewritten.
     let pool: std::sync::Mutex<Vec<Vec<C>>> = std::sync::Mutex::new(Vec::new());
     // What each constraint's rows are where it holds (computed once: the rows minus it are
     // `Equations::polynomial`).
     let mut targets: std::collections::HashMap<ConstraintIdx, C> = Default::default();
-    for &(c, _, _) in &rows {
+    for &c in constraints {
         targets.insert(c, C::new(equations.target(c)?.to_f64()?, 0.0));
     }
     let eval = |y: &[C]| -> (Vec<C>, Vec<C>) {
         let taken = pool.lock().ok().and_then(|mut p| p.pop());
         let mut full = taken.unwrap_or_else(|| complex_base.clone());
-        for (i, &c) in unknowns.iter().enumerate() {
-            full[c] = complex_base[c] + y[i] * size;
+        for (col, terms) in &param.map {
+            full[*col] = complex_base[*col] + terms.iter().map(|(j, w)| y[*j] * *w).sum::<C>();
         }
         let mut values = vec![C::new(0.0, 0.0); rows.len()];
         let mut jac = vec![C::new(0.0, 0.0); rows.len() * n];
         let mut cache: Option<(ConstraintIdx, gcs_jacobian::Residual<C>)> = None;
-        for (k, &(c, row, degree)) in rows.iter().enumerate() {
-            if cache.as_ref().is_none_or(|(cc, _)| *cc != c) {
-                cache = Some((c, equations.rows(c, &full)));
-            }
-            let Some((_, r)) = &cache else { continue };
-            // In units of the size: F(base + size·y) / size^degree.
-            let unit = size.powi(degree as i32);
-            values[k] = (r.values[row] - targets[&c]) / unit;
-            for (col, v) in r.rows[row].entries() {
-                if local[*col] != usize::MAX {
-                    jac[k * n + local[*col]] = v * size / unit;
+        for (k, &(row, degree)) in rows.iter().enumerate() {
+            let gradient = &mut jac[k * n..(k + 1) * n];
+            match row {
+                Row::Constraint(c, r) => {
+                    if cache.as_ref().is_none_or(|(cc, _)| *cc != c) {
+                        cache = Some((c, equations.rows(c, &full)));
+                    }
+                    let Some((_, res)) = &cache else { continue };
+                    // In units of the size: F(base + size·y) / size^degree.
+                    let unit = size.powi(degree as i32);
+                    values[k] = (res.values[r] - targets[&c]) / unit;
+                    for (col, v) in res.rows[r].entries() {
+                        if let Some((_, terms)) = param.map.get(slot[*col]) {
+                            for (j, w) in terms {
+                                gradient[*j] += v * *w / unit;
+                            }
+                        }
+                    }
                 }
+                Row::Extra(e) => values[k] = param.extra[e].eval(y, gradient),
             }
         }
         if let Ok(mut p) = pool.lock() {
@@ -171,7 +381,7 @@ pub(crate) fn realizations(
         let mut f = values[..n].to_vec();
         let mut j = jac[..n * n].to_vec();
         for i in 0..n {
-            for (e, w) in extra[i].iter().enumerate() {
+            for (e, w) in folded[i].iter().enumerate() {
                 f[i] += w * values[n + e];
                 for col in 0..n {
                     j[i * n + col] += w * jac[(n + e) * n + col];
@@ -180,12 +390,10 @@ pub(crate) fn realizations(
         }
         (f, j)
     };
-    // In isotropic coordinates (u, v) = (x + iy, x − iy) of each point, a distance is
-    // bilinear, `(u_a − u_b)(v_a − v_b) = d²`: the start system is two-homogeneous in the u
-    // and the v (70 paths for K3,3 where the total degree has 256).
-    let points_only = entities.iter().filter(|&&e| !layout.columns(e).is_empty()).all(|&e| {
-        layout.columns(e).len() == 2 && system.entity(e).kind() == gcs_model::EntityKind::Point
-    }) && unknowns.len() % 2 == 0;
+    // In isotropic coordinates (u, v) = (a + ib, a − ib) of each pair, a distance is
+    // bilinear, `(u_a − u_b)(v_a − v_b) = d²`, and so is a rotation, `u·v = 1`: the start
+    // system is two-homogeneous in the u and the v (70 paths for K3,3 where the total degree
+    // has 256).
     let half = C::new(0.5, 0.0);
     let minus_half_i = C::new(0.0, -0.5);
     let to_xy = |w: &[C]| -> Vec<C> {
@@ -209,7 +417,7 @@ pub(crate) fn realizations(
         }
         (f, jw)
     };
-    let groups = if points_only {
+    let groups = if param.paired {
         let second: Vec<bool> = (0..n).map(|j| j % 2 == 1).collect();
         bidegrees(&iso, n, &second, &mut rng).map(|b| (second, b))
     } else {
@@ -231,19 +439,31 @@ pub(crate) fn realizations(
         if s.iter().any(|v| !(v.im.abs() <= 1e-7 * magnitude)) {
             continue;
         }
-        let mut y = base.clone();
-        for (i, &c) in unknowns.iter().enumerate() {
-            y[c] = base[c] + s[i].re * size;
+        let real: Vec<f64> = s.iter().map(|v| v.re).collect();
+        let mut y = x.to_vec();
+        for (col, b) in param.base.iter().enumerate() {
+            if slot[col] == usize::MAX && *b != x[col] {
+                y[col] = *b;
+            }
         }
-        let holds = core.iter().all(|&c| {
-            let (Some(r), Some(degrees)) = (equations.polynomial(c, &y), equations.degrees(c))
-            else {
-                return false;
-            };
-            r.values.iter().zip(degrees).all(|(v, d)| v.abs() <= 1e-8 * size.powi(d as i32))
+        for (col, terms) in &param.map {
+            y[*col] = param.base[*col] + terms.iter().map(|(j, w)| real[*j] * w).sum::<f64>();
+        }
+        let extra_hold = param.extra.iter().all(|e| {
+            let complex: Vec<C> = real.iter().map(|v| C::new(*v, 0.0)).collect();
+            let mut g = vec![C::new(0.0, 0.0); n];
+            e.eval(&complex, &mut g).norm() <= 1e-8
         });
+        let holds = extra_hold
+            && check.iter().all(|&c| {
+                let (Some(r), Some(degrees)) = (equations.polynomial(c, &y), equations.degrees(c))
+                else {
+                    return false;
+                };
+                r.values.iter().zip(degrees).all(|(v, d)| v.abs() <= 1e-8 * size.powi(d as i32))
+            });
         if holds {
-            let distance = unknowns.iter().map(|&c| (y[c] - x[c]).powi(2)).sum::<f64>();
+            let distance = param.map.iter().map(|(c, _)| (y[*c] - x[*c]).powi(2)).sum::<f64>();
             found.push((distance, y));
         }
     }
@@ -308,7 +528,7 @@ fn bidegrees(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A framework of points and distances drawn at `points`, each distance at its drawn

@@ -38,6 +38,7 @@
 pub mod alternatives;
 pub mod closed;
 pub mod homotopy;
+pub mod nodes;
 pub mod plan;
 
 use std::cell::RefCell;
@@ -185,6 +186,10 @@ pub struct Solution {
     /// it is built on (its index among the core's real realizations; 0 where the core was not
     /// enumerated); `None` without it.
     pub core_choices: Option<Vec<usize>>,
+    /// With [`SolveOptions::all`]: for each realization of `solutions`, the candidate of each
+    /// node of the core's DR-plan (the first steps of `plan`, [`PlanStep::children`]), a
+    /// node's candidate counted among those its children's choices give; `None` without it.
+    pub node_choices: Option<Vec<Vec<usize>>>,
 }
 
 /// A part of the system that has no real solution (with the choices made for the rest).
@@ -242,6 +247,9 @@ pub struct PlanStep {
     /// reached from the drawing first, and `complete` says whether every path was decided.
     /// `None` where the core was not enumerated (see the [`alternatives`] module).
     pub paths: Option<alternatives::PathCounts>,
+    /// For a node of the core's DR-plan ([`nodes`]) assembled from others: their steps, whose
+    /// chosen realizations it places as rigid bodies (empty for every other step).
+    pub children: Vec<usize>,
 }
 
 /// Why a system was not solved.
@@ -804,101 +812,91 @@ pub fn solve(
             iterations += again.run(&mut x, options, 1.0).0;
         }
     }
-    if !construction.core.is_empty() {
-        let mut entities: Vec<EntityIdx> = Vec::new();
-        for &c in &construction.core {
-            entities.extend(system.constraint_base_entities(c));
-        }
-        entities.sort();
-        entities.dedup();
-        // One distance between two points: its one realization up to moving it is all.
-        let complete = match construction.core.as_slice() {
-            [c] => {
-                let kind = system.constraint(*c).kind;
-                kind == gcs_model::ConstraintKind::Distance && entities.len() == 2
-            }
-            _ => false,
-        };
+    // The core's DR-plan: its nodes are the plan's first steps.
+    let core_nodes = if construction.core.is_empty() {
+        Vec::new()
+    } else {
+        nodes::plan(system, &construction.core)
+    };
+    for node in &core_nodes {
+        let complete = node.single_distance(system);
         plan.push(PlanStep {
-            entities,
-            constraints: construction.core.clone(),
+            entities: node.entities.clone(),
+            constraints: node.constraints.clone(),
             method: Method::Newton,
             candidates: 1,
             chosen: Some(0),
             complete,
             fixed: false,
             paths: None,
+            children: node.children.clone(),
         });
     }
     // With `all`, or when the user chooses among them: every real realization of a solved
-    // core, by homotopy continuation.
-    let mut cores: Vec<Vec<f64>> = vec![x.clone()];
-    let core_choice = match plan.len() {
-        1 => options.choose.iter().rev().find(|c| c.0 == 0).map(|c| c.1),
-        _ => None,
-    };
-    let mut enumerated = false;
-    // Each of `cores`' index among the core's candidates.
-    let mut core_ids: Vec<usize> = vec![0];
-    if (options.all.is_some() || core_choice.is_some())
-        && no_solution.is_empty()
+    // core, node by node, by homotopy continuation; the fixed choices of its nodes.
+    let mut node_forced: Vec<Option<usize>> = vec![None; core_nodes.len()];
+    for &(step, candidate) in &options.choose {
+        if let Some(f) = node_forced.get_mut(step) {
+            *f = Some(candidate);
+        }
+    }
+    let chosen_core = node_forced.iter().any(Option::is_some);
+    // The core's realizations to build on, each with its node choices.
+    let mut cores: Vec<(Vec<f64>, Vec<usize>)> = vec![(x.clone(), vec![0; core_nodes.len()])];
+    let mut core_truncated = false;
+    let enumerable = no_solution.is_empty()
         && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
-        && let Some((counts, found)) = alternatives::realizations(
+        && options.max_paths > 0;
+    if (options.all.is_some() || chosen_core) && enumerable {
+        let solved = x.clone();
+        let enumerator = nodes::Enumerator::new(
             system,
             &layout,
             &equations,
-            &construction.core,
-            &x,
+            &core_nodes,
+            &solved,
+            scale,
             options.max_paths,
-            0x5eed,
-        )
-        && let Some(step) = plan.first_mut()
+        );
+        match enumerator.choose(&node_forced) {
+            Ok((at, found)) => {
+                for (step, candidates) in plan.iter_mut().zip(found) {
+                    step.candidates = candidates.list.len();
+                    step.complete = candidates.complete;
+                    step.paths = candidates.counts;
+                }
+                for (step, forced) in plan.iter_mut().zip(&node_forced) {
+                    step.chosen = Some(forced.unwrap_or(0));
+                    step.fixed = forced.is_some();
+                }
+                x = at;
+                cores = vec![(x.clone(), node_forced.iter().map(|f| f.unwrap_or(0)).collect())];
+            }
+            Err((step, candidate, why)) => {
+                return Err(SolveError::Choice { step, candidate, why });
+            }
+        }
+        if let Some(limit) = options.all {
+            let (found, cut) = enumerator.all(&node_forced, limit.max(1));
+            if !found.is_empty() {
+                cores = found;
+            }
+            core_truncated = cut;
+        }
+    } else if let Some((step, candidate)) =
+        node_forced.iter().enumerate().find_map(|(k, f)| f.map(|c| (k, c)))
     {
-        // The solve's own realization first: it stands for the homotopy's copy of it (the
-        // nearest), or is added where the paths missed it.
-        let mut found = found;
-        let near = found
-            .first()
-            .is_some_and(|f| f.iter().zip(&x).all(|(a, b)| (a - b).abs() <= 1e-7 * scale));
-        if near {
-            found[0] = x.clone();
+        let why = if options.max_paths == 0 {
+            "the core's realizations are not enumerated with --max-paths 0".to_owned()
         } else {
-            found.insert(0, x.clone());
-        }
-        step.candidates = found.len();
-        step.complete = counts.failed == 0 && near;
-        step.paths = Some(counts);
-        enumerated = true;
-        core_ids = (0..found.len()).collect();
-        cores = found;
-    }
-    // A fixed choice of the core: one of its realizations (the solve's own is 0).
-    if let Some(k) = core_choice {
-        let why = if !enumerated {
-            Some(
-                "the core's realizations are not enumerated (see `paths` in docs/format.md)"
-                    .to_owned(),
-            )
-        } else if k >= cores.len() {
-            Some(format!("the core has {} real realization(s), 0–{}", cores.len(), cores.len() - 1))
-        } else {
-            None
+            "the core was not solved, so its realizations are not enumerated".to_owned()
         };
-        if let Some(why) = why {
-            return Err(SolveError::Choice { step: 0, candidate: k, why });
-        }
-        x.clone_from(&cores[k]);
-        cores = vec![cores[k].clone()];
-        core_ids = vec![k];
-        if let Some(step) = plan.first_mut() {
-            step.chosen = Some(k);
-            step.fixed = true;
-        }
+        return Err(SolveError::Choice { step, candidate, why });
     }
     // The fixed choices, by closed-form step.
     let offset = plan.len();
     let mut forced: Vec<Option<usize>> = vec![None; construction.steps.len()];
-    for &(step, candidate) in options.choose.iter().filter(|c| core_choice.is_none() || c.0 != 0) {
+    for &(step, candidate) in options.choose.iter().filter(|c| c.0 >= core_nodes.len()) {
         let why = if step < offset || step >= offset + construction.steps.len() {
             Some(format!(
                 "the plan has {} step{}, of which {} in closed form (steps {}–{})",
@@ -1030,6 +1028,7 @@ pub fn solve(
             complete: true,
             fixed: forced[k].is_some(),
             paths: None,
+            children: Vec::new(),
         });
     }
 
@@ -1081,7 +1080,7 @@ pub fn solve(
     } else {
         Status::Solved
     };
-    let (solutions, solution_choices, truncated, core_choices) = match options.all {
+    let (solutions, solution_choices, truncated, core_choices, node_choices) = match options.all {
         Some(limit) => {
             // Each consistent redundant constraint is checked as soon as its entities are
             // placed: after the last step that places one of them (before any: depth 0).
@@ -1108,7 +1107,8 @@ pub fn solve(
                 budget: ENUMERATION_BUDGET,
             };
             let mut core_choices = Vec::new();
-            for (k, core) in cores.iter().enumerate() {
+            let mut node_choices = Vec::new();
+            for (core, choices) in &cores {
                 // (A realization is the whole configuration at the core's solve, the core's
                 // columns replaced.)
                 let mut y = core.clone();
@@ -1121,14 +1121,21 @@ pub fn solve(
                     &forced,
                     &holds,
                 );
-                core_choices.resize(found.solutions.len(), core_ids[k]);
+                core_choices.resize(found.solutions.len(), choices.last().copied().unwrap_or(0));
+                node_choices.resize(found.solutions.len(), choices.clone());
                 if found.truncated {
                     break;
                 }
             }
-            (Some(found.solutions), Some(found.choices), found.truncated, Some(core_choices))
+            (
+                Some(found.solutions),
+                Some(found.choices),
+                found.truncated || core_truncated,
+                Some(core_choices),
+                Some(node_choices),
+            )
         }
-        None => (None, None, false, None),
+        None => (None, None, false, None, None),
     };
     let mut moved = 0.0f64;
     for e in system.entity_indices() {
@@ -1157,6 +1164,7 @@ pub fn solve(
         solution_choices,
         truncated,
         core_choices,
+        node_choices,
     })
 }
 

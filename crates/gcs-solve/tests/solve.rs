@@ -564,47 +564,59 @@ fn the_core_realizations_come_from_homotopy_continuation() {
     let s = model(&text);
     let sol = solve_with(&s, &SolveOptions { all: Some(1000), ..SolveOptions::default() });
     assert_eq!(sol.status, Status::Solved);
-    let core = &sol.plan[0];
-    let paths = core.paths.expect("the prism is enumerated");
-    assert_eq!((paths.paths, paths.finite, paths.failed), (70, 24, 0), "{paths:?}");
-    assert_eq!(core.candidates, paths.real);
-    assert!(core.complete && core.candidates >= 2 && core.candidates % 2 == 0, "{core:?}");
+    // The prism's DR-plan: its two triangles, then their assembly (24 complex realizations
+    // in all: 2 × 2 × 6).
+    let root = &sol.plan[2];
+    assert_eq!(root.children, vec![0, 1]);
+    let paths = root.paths.expect("the prism is enumerated");
+    assert_eq!((paths.paths, paths.finite, paths.failed), (6, 6, 0), "{paths:?}");
+    for leaf in &sol.plan[..2] {
+        let p = leaf.paths.expect("a triangle is enumerated");
+        assert_eq!((p.paths, p.finite, leaf.candidates), (2, 2, 2), "{leaf:?}");
+    }
+    assert_eq!(root.candidates, paths.real);
+    assert!(root.complete && root.candidates >= 2 && root.candidates % 2 == 0, "{root:?}");
     let all = sol.solutions.as_ref().unwrap();
     let cores = sol.core_choices.as_ref().unwrap();
     assert_eq!(all.len(), cores.len());
+    assert_eq!(sol.node_choices.as_ref().map(|n| n[0].clone()), Some(vec![0, 0, 0]));
     for (i, x) in all.iter().enumerate() {
         assert!(distances_hold(&s, x), "realization {i}: {x:?}");
     }
-    // In the order of the core's candidates, the drawing's first; each with the hung point on
+    // In the order of the nodes' candidates, the drawing's first; each with the hung point on
     // both sides, or none where its two circles do not meet.
+    let nodes = sol.node_choices.as_ref().unwrap();
     assert_eq!(cores[0], 0);
-    assert!(cores.windows(2).all(|w| w[0] <= w[1]) && cores.iter().all(|&k| k < core.candidates));
-    for k in 0..core.candidates {
-        assert!(matches!(cores.iter().filter(|&&c| c == k).count(), 0 | 2), "{cores:?}");
+    assert!(nodes.iter().zip(cores).all(|(n, c)| n[2] == *c));
+    let mut distinct = nodes.clone();
+    distinct.dedup();
+    for n in &distinct {
+        assert!(matches!(nodes.iter().filter(|&m| m == n).count(), 0 | 2), "{nodes:?}");
     }
-    assert!(cores.last() > Some(&0), "{cores:?}");
+    assert!(distinct.len() > 4, "{nodes:?}");
     assert!(all.contains(&sol.x), "the realization the drawing shows is one of them");
     assert!(!sol.truncated);
-    // Choosing the core's last realization (step 0): the solve lands on it, and the rest is
-    // placed as the drawing shows.
-    let k = *cores.last().unwrap();
-    let chosen = solve_with(&s, &SolveOptions { choose: vec![(0, k)], ..SolveOptions::default() });
+    // Choosing the assembly's last candidate (step 2) on which the hung point has a place, the
+    // triangles as drawn: the solve lands on it, and the rest is placed as the drawing shows.
+    let k = nodes.iter().filter(|n| n[..2] == [0, 0]).map(|n| n[2]).max().unwrap();
+    assert!(k > 0, "{nodes:?}");
+    let chosen = solve_with(&s, &SolveOptions { choose: vec![(2, k)], ..SolveOptions::default() });
     assert_eq!(chosen.status, Status::Solved);
-    assert_eq!((chosen.plan[0].chosen, chosen.plan[0].fixed), (Some(k), true));
+    assert_eq!((chosen.plan[2].chosen, chosen.plan[2].fixed), (Some(k), true));
     assert!(distances_hold(&s, &chosen.x));
     let same_core =
         |x: &[f64]| x[..12].iter().zip(&chosen.x[..12]).all(|(a, b)| (a - b).abs() < 1e-9);
-    assert!(all.iter().zip(cores).any(|(x, c)| *c == k && same_core(x)));
+    assert!(all.iter().zip(nodes).any(|(x, n)| n == &[0, 0, k] && same_core(x)));
     let listed = solve_with(
         &s,
-        &SolveOptions { all: Some(100), choose: vec![(0, k)], ..SolveOptions::default() },
+        &SolveOptions { all: Some(100), choose: vec![(2, k)], ..SolveOptions::default() },
     );
-    assert!(listed.core_choices.unwrap().iter().all(|c| *c == k));
-    // A realization the core does not have is an error.
+    assert!(listed.node_choices.unwrap().iter().all(|n| n[2] == k));
+    // A realization the node does not have is an error.
     let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
-    let beyond = SolveOptions { choose: vec![(0, core.candidates)], ..SolveOptions::default() };
+    let beyond = SolveOptions { choose: vec![(2, root.candidates)], ..SolveOptions::default() };
     assert!(matches!(
         solve(&s, &analysis, &beyond),
-        Err(gcs_solve::SolveError::Choice { step: 0, .. })
+        Err(gcs_solve::SolveError::Choice { step: 2, .. })
     ));
 }

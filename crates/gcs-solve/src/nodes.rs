@@ -1,0 +1,533 @@
+//! The core's DR-plan: a plane core of points and distances split into rigid bodies, each
+//! enumerated on its own and then assembled (the ESM paper §2–3: a node is solved with its
+//! children as rigid bodies, and stores its solution as their placements).
+//!
+//! **The plan.** For a core that is a minimally rigid plane framework (points, distances,
+//! `2n − 3` of them, independent by the (2,3) pebble game: Laman's theorem), every distance
+//! `e` is tried: the maximal rigid components of the framework without `e` are its rigid
+//! bodies (the W-decomposition's step, the witness paper §5, decided combinatorially as the
+//! pebble game decides it in 2D). The bodies of at least three points become the node's
+//! children, decomposed in turn; the points on none stay free; the distances between bodies
+//! (and `e`) are the node's own constraints. The distance kept out is the one that leaves the
+//! fewest unknowns at the node (four per body beyond the first, two per free point). A core
+//! whose frameworks without any one distance have no body of three points (K3,3) is one node.
+//!
+//! **Candidates.** A leaf's candidates are its realizations ([`alternatives::realizations`]:
+//! held by one of its distances); a node's are the placements of its children's chosen
+//! realizations as rigid bodies ([`alternatives::assemble`]) — so a node's homotopy is small
+//! (two K3,3 joined by three distances: 70 paths per K3,3 and 6 for the assembly, where the
+//! whole has 184,756). A node whose children are all at the drawing's realization has the
+//! solve's own configuration as its candidate 0; otherwise its candidates are ordered by how
+//! little they move the solved configuration.
+
+use gcs_jacobian::{Equations, Layout};
+use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
+
+use crate::alternatives::{self, PathCounts};
+
+/// The most points a core may have to be decomposed (every distance is tried).
+const MAX_POINTS: usize = 64;
+
+/// The most node homotopies one enumeration runs (each combination of the children's
+/// candidates is one).
+const MAX_ASSEMBLIES: usize = 4096;
+
+/// A node of the core's DR-plan.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Node {
+    /// Its points (its children's too), in file order.
+    pub entities: Vec<EntityIdx>,
+    /// Its own constraints (between its children and on its free points; a leaf: all of
+    /// them), in file order.
+    pub constraints: Vec<ConstraintIdx>,
+    /// Its children, as indices of earlier nodes (empty for a leaf).
+    pub children: Vec<usize>,
+}
+
+impl Node {
+    /// Whether the node is one distance between two points: its one realization (up to
+    /// moving it) is all it has.
+    pub fn single_distance(&self, system: &System) -> bool {
+        match self.constraints.as_slice() {
+            [c] => {
+                system.constraint(*c).kind == ConstraintKind::Distance
+                    && self.entities.len() == 2
+                    && self.children.is_empty()
+            }
+            _ => false,
+        }
+    }
+}
+
+/// The core's DR-plan, children before parents, the whole core last (see the module
+/// documentation); one node when the core does not decompose.
+pub fn plan(system: &System, core: &[ConstraintIdx]) -> Vec<Node> {
+    let mut entities: Vec<EntityIdx> =
+        core.iter().flat_map(|&c| system.constraint_base_entities(c)).collect();
+    entities.sort();
+    entities.dedup();
+    let mut constraints = core.to_vec();
+    constraints.sort();
+    let whole = vec![Node { entities: entities.clone(), constraints, children: Vec::new() }];
+    let Some(bars) = framework(system, core, &entities) else { return whole };
+    let n = entities.len();
+    if n > MAX_POINTS || bars.len() + 3 != 2 * n {
+        return whole;
+    }
+    let pairs: Vec<(usize, usize)> = bars.iter().map(|b| (b.0, b.1)).collect();
+    if gcs_decompose::pebble_game(n, &pairs).rank != bars.len() {
+        return whole;
+    }
+    let mut nodes = Vec::new();
+    decompose((0..n).collect(), bars, &mut nodes);
+    nodes
+        .into_iter()
+        .map(|(vertices, mut constraints, children)| {
+            constraints.sort();
+            Node {
+                entities: vertices.iter().map(|&v| entities[v]).collect(),
+                constraints,
+                children,
+            }
+        })
+        .collect()
+}
+
+/// The distances of a core of points and point-to-point distances (positive), as bars
+/// between the indices of `points`; `None` for any other core.
+fn framework(
+    system: &System,
+    core: &[ConstraintIdx],
+    points: &[EntityIdx],
+) -> Option<Vec<(usize, usize, ConstraintIdx)>> {
+    if system.dim() != gcs_model::Dim::Two || core.is_empty() {
+        return None;
+    }
+    if points.iter().any(|&p| system.entity(p).kind() != gcs_model::EntityKind::Point) {
+        return None;
+    }
+    core.iter()
+        .map(|&c| {
+            let constraint = system.constraint(c);
+            let positive = constraint
+                .value
+                .as_ref()
+                .is_some_and(|v| num_traits::ToPrimitive::to_f64(v).is_some_and(|v| v > 0.0));
+            match constraint.signature.metric() {
+                Some(gcs_model::Metric::DistancePointPoint(a, b))
+                    if constraint.kind == ConstraintKind::Distance && positive && a != b =>
+                {
+                    Some((points.binary_search(&a).ok()?, points.binary_search(&b).ok()?, c))
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// A node as vertices, its own constraints and its children.
+type Raw = (Vec<usize>, Vec<ConstraintIdx>, Vec<usize>);
+
+/// Decomposes the rigid framework on `vertices` (ascending) with `bars`, pushing its nodes
+/// (children first); returns its own index.
+fn decompose(
+    vertices: Vec<usize>,
+    bars: Vec<(usize, usize, ConstraintIdx)>,
+    out: &mut Vec<Raw>,
+) -> usize {
+    let local = |v: usize| vertices.binary_search(&v).unwrap_or(usize::MAX);
+    let mut best: Option<(usize, Vec<Vec<usize>>)> = None;
+    if vertices.len() > 3 {
+        for skip in 0..bars.len() {
+            let rest: Vec<(usize, usize)> = (bars.iter().enumerate())
+                .filter(|(i, _)| *i != skip)
+                .map(|(_, b)| (local(b.0), local(b.1)))
+                .collect();
+            let report = gcs_decompose::pebble_game(vertices.len(), &rest);
+            let bodies: Vec<Vec<usize>> =
+                report.components.into_iter().filter(|c| c.len() >= 3).collect();
+            if bodies.is_empty() || bodies.iter().any(|b| b.len() == vertices.len()) {
+                continue;
+            }
+            let mut covered = vec![false; vertices.len()];
+            for &v in bodies.iter().flatten() {
+                covered[v] = true;
+            }
+            let free = covered.iter().filter(|c| !**c).count();
+            let unknowns = 4 * (bodies.len() - 1) + 2 * free;
+            if best.as_ref().is_none_or(|(u, _)| unknowns < *u) {
+                best = Some((unknowns, bodies));
+            }
+        }
+    }
+    let Some((_, bodies)) = best else {
+        let constraints = bars.iter().map(|b| b.2).collect();
+        out.push((vertices, constraints, Vec::new()));
+        return out.len() - 1;
+    };
+    let mut children = Vec::new();
+    let mut inside = vec![false; bars.len()];
+    for body in &bodies {
+        let global: Vec<usize> = body.iter().map(|&v| vertices[v]).collect();
+        let own: Vec<(usize, usize, ConstraintIdx)> = (bars.iter().enumerate())
+            .filter(|(_, b)| {
+                global.binary_search(&b.0).is_ok() && global.binary_search(&b.1).is_ok()
+            })
+            .map(|(i, b)| {
+                inside[i] = true;
+                *b
+            })
+            .collect();
+        children.push(decompose(global, own, out));
+    }
+    let constraints = bars.iter().zip(&inside).filter(|(_, i)| !**i).map(|(b, _)| b.2).collect();
+    out.push((vertices, constraints, children));
+    out.len() - 1
+}
+
+/// A node's candidates given its children's configurations.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Candidates {
+    /// Its homotopy's paths, when it was enumerated.
+    pub counts: Option<PathCounts>,
+    /// The configurations, whole (the solved configuration outside the node).
+    pub list: Vec<Vec<f64>>,
+    /// Whether `list` is every real solution.
+    pub complete: bool,
+}
+
+/// The enumeration of a core's DR-plan at a solved configuration.
+pub(crate) struct Enumerator<'a> {
+    pub system: &'a System,
+    pub layout: &'a Layout,
+    pub equations: &'a Equations<'a>,
+    pub nodes: &'a [Node],
+    /// The solved configuration.
+    pub x: &'a [f64],
+    /// The model's size (what "the solved configuration" is compared at).
+    pub scale: f64,
+    pub max_paths: usize,
+    /// Homotopies left to run.
+    pub budget: std::cell::Cell<usize>,
+}
+
+/// A choice a node does not offer: the node, the candidate asked for, why not.
+pub(crate) type Refused = (usize, usize, String);
+
+/// A node's choices: for each node, its candidate.
+pub(crate) type Choices = Vec<usize>;
+
+impl<'a> Enumerator<'a> {
+    pub(crate) fn new(
+        system: &'a System,
+        layout: &'a Layout,
+        equations: &'a Equations<'a>,
+        nodes: &'a [Node],
+        x: &'a [f64],
+        scale: f64,
+        max_paths: usize,
+    ) -> Self {
+        let budget = std::cell::Cell::new(MAX_ASSEMBLIES);
+        Enumerator { system, layout, equations, nodes, x, scale, max_paths, budget }
+    }
+
+    /// Node `k`'s candidates with its children at `children` (configurations, in the order
+    /// of `Node::children`); `own`: they are the drawing's, so the solved configuration is
+    /// one of them, and comes first.
+    pub(crate) fn candidates(&self, k: usize, children: &[&[f64]], own: bool) -> Candidates {
+        let node = &self.nodes[k];
+        let seed = 0x5eed ^ (k as u64).wrapping_mul(0x9E37_79B9);
+        if node.single_distance(self.system) && own {
+            return Candidates { counts: None, list: vec![self.x.to_vec()], complete: true };
+        }
+        let found = if self.budget.get() == 0 {
+            None
+        } else if node.children.is_empty() {
+            self.budget.set(self.budget.get() - 1);
+            alternatives::realizations(
+                self.system,
+                self.layout,
+                self.equations,
+                &node.constraints,
+                self.x,
+                self.max_paths,
+                seed,
+            )
+        } else {
+            self.budget.set(self.budget.get() - 1);
+            // The largest child is the reference.
+            let mut bodies: Vec<(Vec<EntityIdx>, &[f64])> = (node.children.iter())
+                .zip(children)
+                .map(|(&c, config)| (self.nodes[c].entities.clone(), *config))
+                .collect();
+            bodies.sort_by_key(|b| std::cmp::Reverse(b.0.len()));
+            let free: Vec<EntityIdx> = (node.entities.iter().copied())
+                .filter(|e| bodies.iter().all(|b| !b.0.contains(e)))
+                .collect();
+            alternatives::assemble(
+                self.layout,
+                self.equations,
+                &bodies,
+                &free,
+                &node.constraints,
+                self.x,
+                self.max_paths,
+                seed,
+            )
+        };
+        match found {
+            Some((counts, mut list)) => {
+                let mut complete = counts.failed == 0;
+                if own {
+                    let near = list.first().is_some_and(|f| {
+                        f.iter().zip(self.x).all(|(a, b)| (a - b).abs() <= 1e-7 * self.scale)
+                    });
+                    if near {
+                        list[0] = self.x.to_vec();
+                    } else {
+                        list.insert(0, self.x.to_vec());
+                    }
+                    complete &= near;
+                }
+                Candidates { counts: Some(counts), list, complete }
+            }
+            None => Candidates {
+                counts: None,
+                list: if own { vec![self.x.to_vec()] } else { Vec::new() },
+                complete: false,
+            },
+        }
+    }
+
+    /// The configuration at the choices `forced` (per node; `None`: candidate 0), with each
+    /// node's candidates there; `Err((node, candidate, why))` when a choice is not offered.
+    pub(crate) fn choose(
+        &self,
+        forced: &[Option<usize>],
+    ) -> Result<(Vec<f64>, Vec<Candidates>), Refused> {
+        let mut configs: Vec<Vec<f64>> = Vec::with_capacity(self.nodes.len());
+        let mut drawn: Vec<bool> = Vec::with_capacity(self.nodes.len());
+        let mut all = Vec::with_capacity(self.nodes.len());
+        for (k, node) in self.nodes.iter().enumerate() {
+            let children: Vec<&[f64]> =
+                node.children.iter().map(|&c| configs[c].as_slice()).collect();
+            let own = node.children.iter().all(|&c| drawn[c]);
+            let candidates = self.candidates(k, &children, own);
+            let pick = forced.get(k).copied().flatten().unwrap_or(0);
+            let Some(config) = candidates.list.get(pick) else {
+                let why = match candidates.list.len() {
+                    0 => "it has no real candidate at the choices of its children".to_owned(),
+                    m => format!("it has {m} real candidate(s), 0–{}", m - 1),
+                };
+                return Err((k, pick, why));
+            };
+            configs.push(config.clone());
+            drawn.push(own && pick == 0);
+            all.push(candidates);
+        }
+        Ok((configs.pop().unwrap_or_else(|| self.x.to_vec()), all))
+    }
+
+    /// Every combination of the nodes' candidates (each node at `forced` where given), at most
+    /// `limit`: the whole core's configurations with each node's candidate, and whether the
+    /// limit (or the budget of homotopies) cut the list short.
+    pub(crate) fn all(
+        &self,
+        forced: &[Option<usize>],
+        limit: usize,
+    ) -> (Vec<(Vec<f64>, Choices)>, bool) {
+        let mut truncated = false;
+        let Some(root) = self.nodes.len().checked_sub(1) else { return (Vec::new(), false) };
+        let found = self.below(root, forced, limit, &mut truncated);
+        (found.into_iter().map(|(x, c, _)| (x, c)).collect(), truncated || self.budget.get() == 0)
+    }
+
+    /// The realizations of node `k`'s subtree: configuration, choices (zero outside the
+    /// subtree), and whether every choice in it is the drawing's.
+    fn below(
+        &self,
+        k: usize,
+        forced: &[Option<usize>],
+        limit: usize,
+        truncated: &mut bool,
+    ) -> Vec<(Vec<f64>, Choices, bool)> {
+        let node = &self.nodes[k];
+        let lists: Vec<Vec<(Vec<f64>, Choices, bool)>> =
+            node.children.iter().map(|&c| self.below(c, forced, limit, truncated)).collect();
+        let mut out = Vec::new();
+        if lists.iter().any(Vec::is_empty) {
+            return out;
+        }
+        // Every combination of the children's realizations (an odometer).
+        let mut at = vec![0usize; lists.len()];
+        loop {
+            let children: Vec<&[f64]> =
+                lists.iter().zip(&at).map(|(l, &i)| l[i].0.as_slice()).collect();
+            let own = lists.iter().zip(&at).all(|(l, &i)| l[i].2);
+            let mut choices = vec![0usize; self.nodes.len()];
+            for (l, &i) in lists.iter().zip(&at) {
+                for (c, v) in choices.iter_mut().zip(&l[i].1) {
+                    *c += v;
+                }
+            }
+            let candidates = self.candidates(k, &children, own);
+            for (i, config) in candidates.list.into_iter().enumerate() {
+                if forced.get(k).copied().flatten().is_some_and(|f| f != i) {
+                    continue;
+                }
+                if out.len() == limit {
+                    *truncated = true;
+                    return out;
+                }
+                let mut c = choices.clone();
+                c[k] = i;
+                out.push((config, c, own && i == 0));
+            }
+            // The next combination.
+            let mut d = 0;
+            loop {
+                if d == at.len() {
+                    return out;
+                }
+                at[d] += 1;
+                if at[d] < lists[d].len() {
+                    break;
+                }
+                at[d] = 0;
+                d += 1;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::alternatives::tests::framework;
+    use crate::homotopy::MAX_PATHS;
+
+    fn enumerate(points: &[[f64; 2]], edges: &[(usize, usize)]) -> (System, Vec<Node>) {
+        let s = framework(points, edges);
+        let core: Vec<ConstraintIdx> = s.constraint_indices().collect();
+        let nodes = plan(&s, &core);
+        (s, nodes)
+    }
+
+    /// The sum, over every combination of the children's real candidates, of the root's
+    /// finite complex solutions, and every realization.
+    fn count(s: &System, nodes: &[Node], x: &[f64]) -> (usize, Vec<Vec<f64>>) {
+        let layout = Layout::new(s);
+        let eq = Equations::new(s, &layout);
+        let e = Enumerator::new(s, &layout, &eq, nodes, x, 10.0, MAX_PATHS);
+        let root = nodes.len() - 1;
+        let leaves: Vec<Candidates> =
+            nodes[root].children.iter().map(|&c| e.candidates(c, &[], true)).collect();
+        let [a, b] = &leaves[..] else { panic!("{nodes:?}") };
+        let mut finite = 0;
+        for (i, u) in a.list.iter().enumerate() {
+            for (j, v) in b.list.iter().enumerate() {
+                let r = e.candidates(root, &[u, v], i == 0 && j == 0);
+                let counts = r.counts.unwrap();
+                assert_eq!(counts.failed, 0, "{counts:?}");
+                finite += counts.finite;
+            }
+        }
+        let (all, truncated) = e.all(&vec![None; nodes.len()], 100_000);
+        assert!(!truncated);
+        (finite, all.into_iter().map(|a| a.0).collect())
+    }
+
+    fn holds(s: &System, y: &[f64]) -> bool {
+        let layout = Layout::new(s);
+        let eq = Equations::new(s, &layout);
+        s.constraint_indices().all(|c| eq.residual(c, y).unwrap().values[0].abs() < 1e-9)
+    }
+
+    /// The prism splits into its two triangles and the three distances between them: 2 × 2
+    /// leaf realizations, each assembled in 6 complex ways — Capco et al.'s 24 — and the real
+    /// ones are exactly those of the whole prism's own homotopy.
+    #[test]
+    fn the_prism_is_two_triangles_assembled() {
+        let prism = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)];
+        let points = [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7]];
+        let (s, nodes) = enumerate(&points, &prism);
+        assert_eq!(nodes.len(), 3, "{nodes:?}");
+        assert_eq!(nodes[2].children, vec![0, 1]);
+        assert_eq!(nodes[2].constraints.len(), 3);
+        assert!(nodes[..2].iter().all(|n| n.entities.len() == 3 && n.constraints.len() == 3));
+        let x: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
+        let (finite, all) = count(&s, &nodes, &x);
+        assert_eq!(finite, 24);
+        assert!(all.iter().all(|y| holds(&s, y)));
+        assert!(all[0].iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9), "the drawing first");
+        // The whole prism by one homotopy (held by the same distance): the same realizations.
+        let layout = Layout::new(&s);
+        let eq = Equations::new(&s, &layout);
+        let core: Vec<ConstraintIdx> = s.constraint_indices().collect();
+        let (_, flat) =
+            alternatives::realizations(&s, &layout, &eq, &core, &x, MAX_PATHS, 7).unwrap();
+        assert_eq!(flat.len(), all.len());
+        for y in &flat {
+            assert!(
+                all.iter().any(|z| z.iter().zip(y).all(|(a, b)| (a - b).abs() < 1e-7)),
+                "{y:?} not assembled"
+            );
+        }
+    }
+
+    /// Two K3,3 joined by three distances (the witness paper's figure 8a): two leaves of 70
+    /// paths and 16 complex realizations each, and an assembly of 6 paths per pair, where the
+    /// whole would need 184,756; K3,3 alone does not split.
+    #[test]
+    fn two_k33_are_assembled_from_their_realizations() {
+        let points = [
+            [1.0, 2.0],
+            [2.0, 8.0],
+            [4.0, 13.0],
+            [9.0, 3.0],
+            [11.0, 9.0],
+            [8.0, 14.0],
+            [20.0, 1.0],
+            [21.0, 7.0],
+            [19.0, 12.0],
+            [27.0, 2.0],
+            [29.0, 8.0],
+            [26.0, 13.0],
+        ];
+        let mut edges = vec![(3, 6), (4, 7), (5, 8)];
+        for i in 0..3 {
+            for j in 3..6 {
+                edges.push((i, j));
+                edges.push((i + 6, j + 6));
+            }
+        }
+        let (s, nodes) = enumerate(&points, &edges);
+        assert_eq!(nodes.len(), 3, "{nodes:?}");
+        assert!(nodes[..2].iter().all(|n| n.entities.len() == 6 && n.children.is_empty()));
+        assert_eq!(nodes[2].constraints.len(), 3);
+        let layout = Layout::new(&s);
+        let eq = Equations::new(&s, &layout);
+        let x: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
+        let e = Enumerator::new(&s, &layout, &eq, &nodes, &x, 29.0, MAX_PATHS);
+        let (at, found) = e.choose(&[None, None, None]).unwrap();
+        assert!(at.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9));
+        for leaf in &found[..2] {
+            let c = leaf.counts.unwrap();
+            assert_eq!((c.paths, c.finite, c.failed), (70, 16, 0), "{c:?}");
+            assert!(leaf.complete && leaf.list.len() >= 2);
+        }
+        let root = found[2].counts.unwrap();
+        assert_eq!((root.paths, root.failed), (6, 0), "{root:?}");
+        assert!(found[2].complete && root.finite <= 6);
+        // The second candidate of the first K3,3: the assembly moves with it.
+        let (other, _) = e.choose(&[Some(1), None, Some(0)]).unwrap();
+        assert!(holds(&s, &other));
+        assert!(other.iter().zip(&x).any(|(a, b)| (a - b).abs() > 1e-3));
+        let k33 = framework(
+            &points[..6],
+            &edges[3..].iter().copied().filter(|e| e.1 < 6).collect::<Vec<_>>(),
+        );
+        let core: Vec<ConstraintIdx> = k33.constraint_indices().collect();
+        assert_eq!(plan(&k33, &core).len(), 1);
+    }
+}
