@@ -1,42 +1,60 @@
 #!/usr/bin/env bash
-# The browser test of `gcs navigate`: headless Chromium opens the page written for the chain of
-# triangles (data/paper/chain.ron), first as written (autosolve: the drawing's choices), then
-# with `#choose=STEP:K` flipping one closed-form step, and reads the page's state: the
-# realization shown must change, take candidate K at that step, and satisfy every constraint.
-# Needs the release CLI built and chromium. Writes a screenshot next to the page.
+# The browser test of `gcs navigate`: headless Chromium opens the pages written for
+# - the chain of triangles (data/paper/chain.ron): first as written (autosolve: the drawing's
+#   choices), then with `#choose=STEP:K` flipping one closed-form step;
+# - two K3,3 joined by three distances (data/paper/two_k33.ron): with `#choose=0:1`, the second
+#   candidate of the first K3,3 (step 0 of the core's DR-plan, found by homotopy continuation),
+#   the assembly of the two re-solved;
+# and reads the page's state: the realization shown must change, take candidate K at that
+# step, and satisfy every constraint. Needs the release CLI built and chromium. Writes a
+# screenshot of each next to its page.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 gcs="${GCS_CLI:-$root/target/release/gcs}"
 dir="$(mktemp -d)"
-page="$dir/chain.html"
-"$gcs" navigate "$root/data/paper/chain.ron" -o "$page"
 state() {
     timeout 120 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 \
-        --dump-dom "file://$page$1" 2>/dev/null \
+        --dump-dom "file://$1$2" 2>/dev/null \
         | python3 -c '
 import html, json, re, sys
 m = re.search(r"<pre id=\"state\">(.*?)</pre>", sys.stdin.read(), re.S)
 print(json.dumps(json.loads(html.unescape(m.group(1)))) if m else "none")'
 }
-before="$(state "")"
-# Step 2 of the plan is the second closed-form step (step 0 is the core): take the candidate
-# the drawing did not.
-k="$(python3 -c 'import json,sys; print(1 - json.loads(sys.argv[1])["choices"][1])' "$before")"
-after="$(state "#choose=2:$k")"
-python3 - "$before" "$after" "$k" <<'PY'
+# check PAGE STEP CHOICE K: the page at `#choose=STEP:K` against the page as written; CHOICE
+# is the step's place in the state's `choices`.
+check() {
+    local page="$1" step="$2" choice="$3" k="$4"
+    local before after
+    before="$(state "$page" "")"
+    after="$(state "$page" "#choose=$step:$k")"
+    python3 - "$before" "$after" "$choice" "$k" "$page" <<'PY'
 import json, sys
-before, after, k = json.loads(sys.argv[1]), json.loads(sys.argv[2]), int(sys.argv[3])
+before, after, c, k, page = json.loads(sys.argv[1]), json.loads(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
 problems = []
 if after["realization"] == before["realization"]:
     problems.append("the realization did not change")
-if after["choices"][1] != k:
-    problems.append(f"step 2 is at candidate {after['choices'][1]}, not {k}")
+if after["choices"][c] != k:
+    problems.append(f"choice {c} is at candidate {after['choices'][c]}, not {k}")
 for s in (before, after):
     if not s["max_residual"] <= 1e-9:
         problems.append(f"realization {s['realization']}: residual {s['max_residual']}")
 if problems:
-    sys.exit("navigate browser test: " + "; ".join(problems) + f"\n  before {before}\n  after {after}")
+    sys.exit(f"navigate browser test ({page}): " + "; ".join(problems) + f"\n  before {before}\n  after {after}")
 PY
-timeout 120 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 \
-    --window-size=1300,900 --screenshot="$dir/chain.png" "file://$page#choose=2:$k" >/dev/null 2>&1 || true
-echo "navigate browser test: picking candidate $k of step 2 redraws another realization; screenshot $dir/chain.png"
+    timeout 120 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 \
+        --window-size=1400,1000 --screenshot="${page%.html}.png" "file://$page#choose=$step:$k&open=$step" \
+        >/dev/null 2>&1 || true
+    echo "navigate browser test: $(basename "$page"): candidate $k of step $step shows another realization, every constraint holding; screenshot ${page%.html}.png"
+}
+
+chain="$dir/chain.html"
+"$gcs" navigate "$root/data/paper/chain.ron" -o "$chain"
+# The chain's step 2 is its second closed-form step (step 0 is the core, one distance, no
+# choice; the choices are the core node's, then the closed-form steps'): take the candidate the
+# drawing did not.
+k="$(python3 -c 'import json,sys; print(1 - json.loads(sys.argv[1])["choices"][2])' "$(state "$chain" "")")"
+check "$chain" 2 2 "$k"
+
+k33="$dir/two_k33.html"
+"$gcs" navigate "$root/data/paper/two_k33.ron" -o "$k33"
+check "$k33" 0 0 1

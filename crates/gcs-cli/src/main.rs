@@ -169,13 +169,14 @@ enum Command {
         /// Fix the choice of a closed-form step: STEP=K places step STEP of the `plan` list (its
         /// index, from 0) at its candidate K (a point by two distances: 0 left of the line from
         /// its first anchor to its second, 1 right; by a distance and a line: 0 ahead along the
-        /// line's direction, 1 behind). STEP 0, the core, takes its realization K among those
-        /// the homotopy finds (0: the one solved from the drawing). Repeatable; the other steps
-        /// follow the drawing.
+        /// line's direction, 1 behind). A step of the core (the first steps: the nodes of its
+        /// DR-plan) takes its candidate K among those the homotopy finds, given its children's
+        /// choices (0: the one solved from the drawing). Repeatable; the other steps follow the
+        /// drawing.
         #[arg(long, value_name = "STEP=K", value_parser = parse_choice)]
         choose: Vec<(usize, usize)>,
-        /// With --all or --choose 0=K: the most homotopy paths the core's enumeration may
-        /// track (its start system's solutions; at most 16384, about 150 paths a second on
+        /// With --all or a choice in the core: the most homotopy paths each node of the core
+        /// may track (its start system's solutions; at most 16384, about 150 paths a second on
         /// two cores); 0 keeps the core as solved.
         #[arg(long, value_name = "N", default_value_t = 4096,
               value_parser = clap::value_parser!(u32).range(0..=16384))]
@@ -225,6 +226,11 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = 256,
               value_parser = clap::value_parser!(u32).range(1..=10_000))]
         max_solutions: u32,
+        /// The most homotopy paths each node of the core may track to enumerate its
+        /// candidates (as `gcs solve --max-paths`); 0 keeps the core as solved.
+        #[arg(long, value_name = "N", default_value_t = 4096,
+              value_parser = clap::value_parser!(u32).range(0..=16384))]
+        max_paths: u32,
     },
     /// Print a generated model of a family of growing size (the benchmark families) as RON.
     Generate {
@@ -288,9 +294,13 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check { format, paths } => check::run(&paths, format),
         Command::Convert { input, output } => convert::run(&input, output.as_deref()),
-        Command::Navigate { input, output, sketch, max_solutions } => {
-            navigate::run(&input, &output, sketch.as_deref(), max_solutions as usize)
-        }
+        Command::Navigate { input, output, sketch, max_solutions, max_paths } => navigate::run(
+            &input,
+            &output,
+            sketch.as_deref(),
+            max_solutions as usize,
+            max_paths as usize,
+        ),
         Command::Solve { format, out, all, max_solutions, choose, max_paths, jobs, paths } => {
             let options = gcs_solve::SolveOptions {
                 all: all.then_some(max_solutions as usize),

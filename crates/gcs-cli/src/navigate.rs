@@ -5,7 +5,13 @@ use std::process::ExitCode;
 
 use crate::batch;
 
-pub(crate) fn run(input: &Path, output: &Path, sketch: Option<&str>, limit: usize) -> ExitCode {
+pub(crate) fn run(
+    input: &Path,
+    output: &Path,
+    sketch: Option<&str>,
+    limit: usize,
+    max_paths: usize,
+) -> ExitCode {
     let file = batch::display(input);
     let fail = |message: String| {
         eprintln!("error: {message}");
@@ -21,7 +27,7 @@ pub(crate) fn run(input: &Path, output: &Path, sketch: Option<&str>, limit: usiz
         Ok(m) => m,
         Err(e) => return fail(e.to_string()),
     };
-    let page = match gcs_report::navigate::navigate_page(&model.system, &file, limit) {
+    let page = match gcs_report::navigate::navigate_page(&model.system, &file, limit, max_paths) {
         Ok(p) => p,
         Err(e) => return fail(format!("{file}: {e}")),
     };

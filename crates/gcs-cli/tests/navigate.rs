@@ -43,23 +43,63 @@ fn the_page_holds_every_realization_and_the_drawings_choices() {
         assert!(r["ron"].as_str().unwrap().contains("System("));
         assert!(seen.insert(r["choices"].to_string()), "distinct choices");
     }
-    // Autosolve: the choices of the plan `gcs solve` reports.
-    let chosen: Vec<Value> = solved["plan"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|p| p["method"] == "closed-form")
-        .map(|p| p["chosen"].clone())
-        .collect();
+    // Autosolve: the choices of the plan `gcs solve` reports (the core's node, one distance,
+    // then the closed-form steps).
+    let chosen: Vec<Value> =
+        solved["plan"].as_array().unwrap().iter().map(|p| p["chosen"].clone()).collect();
     let autosolve = d["autosolve"].as_u64().unwrap() as usize;
     assert_eq!(realizations[autosolve]["choices"], Value::from(chosen));
     assert_eq!(d["plan"].as_array().unwrap().len(), solved["plan"].as_array().unwrap().len());
 }
 
+/// Two K3,3 joined by three distances: the page offers the candidates of each node of the
+/// core's DR-plan — each K3,3's real realizations and their assembly — and embeds every
+/// combination, each satisfying every constraint.
+#[test]
+fn the_core_nodes_candidates_are_offered() {
+    let page = temp("two_k33.html");
+    let (code, _, err) = gcs(&["navigate", "data/paper/two_k33.ron", "-o", page.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let d = embedded(&std::fs::read_to_string(&page).unwrap());
+    let plan = d["plan"].as_array().unwrap();
+    assert_eq!(plan.len(), 3);
+    assert_eq!(plan[2]["children"], serde_json::json!([0, 1]));
+    for (k, p) in plan.iter().enumerate() {
+        assert_eq!(p["choice"].as_u64(), Some(k as u64), "{p}");
+        assert!(p["offered"].as_u64().unwrap() >= 2, "{p}");
+        assert_eq!(p["paths"]["failed"], 0, "{p}");
+    }
+    assert_eq!(plan[0]["paths"]["finite"], 16);
+    let realizations = d["realizations"].as_array().unwrap();
+    // Every combination of the K3,3s' candidates is there, each assembled.
+    let offered = |k: usize| plan[k]["offered"].as_u64().unwrap();
+    for a in 0..offered(0) {
+        for b in 0..offered(1) {
+            assert!(
+                realizations.iter().any(|r| r["choices"][0] == a && r["choices"][1] == b),
+                "{a} {b}"
+            );
+        }
+    }
+    assert!(realizations.iter().all(|r| r["max_residual"].as_f64().unwrap() <= 1e-9));
+    assert_eq!(
+        realizations[d["autosolve"].as_u64().unwrap() as usize]["choices"],
+        serde_json::json!([0, 0, 0])
+    );
+}
+
 #[test]
 fn a_cad_file_opens_and_a_missing_sketch_is_named() {
     let page = temp("slot.html");
-    let (code, _, err) = gcs(&["navigate", "data/cad/slot.slvs", "-o", page.to_str().unwrap()]);
+    // (The core as solved: its homotopy, 512 paths, is `gcs solve --all`'s business.)
+    let (code, _, err) = gcs(&[
+        "navigate",
+        "data/cad/slot.slvs",
+        "--max-paths",
+        "0",
+        "-o",
+        page.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
     let d = embedded(&std::fs::read_to_string(&page).unwrap());
     assert_eq!(d["model"], "slot/g2");

@@ -1,19 +1,22 @@
-//! The solution navigator (`gcs navigate`, the ESM paper §4's interface, for the closed-form
-//! steps): one self-contained HTML page — no server, no network — with the sketch solved and
-//! drawn as SVG, the solve's plan beside it, and for each closed-form step its candidates.
-//! Picking a candidate shows the realization with that choice and as many of the other
-//! choices kept as the realizations allow (the rest re-assembled); "autosolve" goes back to the
-//! choices the drawing shows; "download RON" saves the realization shown.
+//! The solution navigator (`gcs navigate`, the ESM paper §4's interface): one self-contained
+//! HTML page — no server, no network — with the sketch solved and drawn as SVG, the solve's
+//! plan beside it as the DR-plan's tree (the core's nodes, each assembled from its children as
+//! rigid bodies, then the closed-form steps), and for each node and step its candidates.
+//! Clicking a step shows its candidates as small drawings; picking one shows the realization
+//! with that choice and as many of the other choices kept as the realizations allow (the rest
+//! re-assembled); "autosolve" goes back to the choices the drawing shows; "download RON" saves
+//! the realization shown.
 //!
-//! The realizations are computed here, not in the page: every combination of the closed-form
-//! steps' real candidates under which the consistent redundant constraints still hold
+//! The realizations are computed here, not in the page: every combination of the core's
+//! nodes' real candidates (by homotopy continuation, [`gcs_solve::nodes`]) and of the
+//! closed-form steps' candidates under which the consistent redundant constraints still hold
 //! ([`gcs_solve::SolveOptions::all`]), at most `limit` of them, each drawn and written as RON
-//! in advance. The core (what no closed-form step places) is the one solved from the drawing:
-//! its other realizations are not enumerated (no homotopy yet).
+//! in advance.
 //!
 //! The page keeps its state in `<pre id="state">` as JSON (the realization shown, its choices,
 //! its largest residual) and applies `#choose=STEP:K,...` from its address when it loads (STEP
-//! as numbered in the plan), which is how the tests drive it.
+//! as numbered in the plan; `&open=STEP` then shows that step's candidates), which is how the
+//! tests drive it.
 
 use gcs_model::System;
 use gcs_solve::{Method, SolveOptions};
@@ -21,41 +24,46 @@ use serde_json::json;
 
 use crate::{Report, ReportError, picture, run};
 
-/// The page for `system` (read from `file`), with at most `limit` realizations.
+/// The page for `system` (read from `file`), with at most `limit` realizations; the core's
+/// nodes are enumerated with at most `max_paths` homotopy paths each (0: the core as solved).
 ///
 /// # Errors
 /// The analysis or the solve failed, or the solve found no realization to show.
-pub fn navigate_page(system: &System, file: &str, limit: usize) -> Result<String, ReportError> {
+pub fn navigate_page(
+    system: &System,
+    file: &str,
+    limit: usize,
+    max_paths: usize,
+) -> Result<String, ReportError> {
     let (analysis, backend) = run::solving_analysis(system)?;
-    // (The page offers the closed-form steps' choices, the core as solved: its other
-    // realizations are not computed.)
-    let options = SolveOptions { all: Some(limit.max(1)), max_paths: 0, ..SolveOptions::default() };
+    let options = SolveOptions { all: Some(limit.max(1)), max_paths, ..SolveOptions::default() };
     let solution = gcs_solve::solve(system, &analysis, &options).map_err(ReportError::Solve)?;
     let report = Report::new(system, file, &analysis, None);
-    // The page chooses among the closed-form steps' candidates: the core as solved from the
-    // drawing (its first realization).
-    let cores = solution.core_choices.clone().unwrap_or_default();
-    let on_solved_core = |i: &usize| cores.get(*i).is_none_or(|k| *k == 0);
-    let realizations: Vec<Vec<f64>> = (solution.solutions.clone().unwrap_or_default().into_iter())
+    let realizations: Vec<Vec<f64>> = solution.solutions.clone().unwrap_or_default();
+    // Each realization's choices: the core's nodes', then the closed-form steps'.
+    let nodes = solution.plan.iter().take_while(|p| p.method == Method::Newton).count();
+    let node_choices = solution.node_choices.clone().unwrap_or_default();
+    let choices: Vec<Vec<usize>> = (solution.solution_choices.clone().unwrap_or_default())
+        .into_iter()
         .enumerate()
-        .filter(|(i, _)| on_solved_core(i))
-        .map(|(_, x)| x)
+        .map(|(i, closed)| {
+            let mut c = node_choices.get(i).cloned().unwrap_or_else(|| vec![0; nodes]);
+            c.extend(closed);
+            c
+        })
         .collect();
-    let choices: Vec<Vec<usize>> =
-        (solution.solution_choices.clone().unwrap_or_default().into_iter())
-            .enumerate()
-            .filter(|(i, _)| on_solved_core(i))
-            .map(|(_, c)| c)
-            .collect();
-    let steps: Vec<(usize, &gcs_solve::PlanStep)> =
-        solution.plan.iter().enumerate().filter(|(_, p)| p.method == Method::ClosedForm).collect();
+    // The steps with a choice: each node of an enumerated core, each closed-form step.
+    let choosable = |p: &gcs_solve::PlanStep| p.method == Method::ClosedForm || p.paths.is_some();
     let ids = |es: &[gcs_model::EntityIdx]| -> Vec<String> {
         es.iter().map(|e| system.entity(*e).id.clone()).collect()
     };
     let cids = |cs: &[gcs_model::ConstraintIdx]| -> Vec<String> {
         cs.iter().map(|c| system.constraint(*c).id.clone()).collect()
     };
-    let drawn: Vec<usize> = steps.iter().map(|(_, p)| p.chosen.unwrap_or(0)).collect();
+    let drawn: Vec<usize> = (solution.plan.iter().enumerate())
+        .filter(|(k, p)| *k < nodes || p.method == Method::ClosedForm)
+        .map(|(_, p)| p.chosen.unwrap_or(0))
+        .collect();
     let mut shown = Vec::new();
     for (x, c) in realizations.iter().zip(&choices) {
         let solved = gcs_solve::solved_at(system, x);
@@ -73,18 +81,34 @@ pub fn navigate_page(system: &System, file: &str, limit: usize) -> Result<String
         });
     }
     let autosolve = choices.iter().position(|c| *c == drawn).unwrap_or(0);
+    let mut position = 0;
     let plan: Vec<_> = solution
         .plan
         .iter()
         .enumerate()
         .map(|(k, p)| {
+            let choice = (k < nodes || p.method == Method::ClosedForm).then(|| {
+                position += 1;
+                position - 1
+            });
+            // The candidates some listed realization takes (a node's depend on its children's
+            // choices: the most it has under any of them).
+            let offered = choice
+                .filter(|_| choosable(p))
+                .map(|c| choices.iter().map(|r| r[c] + 1).max().unwrap_or(0));
             json!({
                 "step": k,
                 "entities": ids(&p.entities),
                 "constraints": cids(&p.constraints),
                 "method": p.method.name(),
                 "candidates": p.candidates,
-                "choice": steps.iter().position(|(i, _)| *i == k),
+                "offered": offered,
+                "choice": offered.and(choice),
+                "children": p.children,
+                "paths": p.paths.map(|c| json!({
+                    "tracked": c.paths, "finite": c.finite, "real": c.real, "failed": c.failed,
+                })),
+                "complete": p.complete,
             })
         })
         .collect();
@@ -116,10 +140,16 @@ const PAGE: &str = r#"<!DOCTYPE html>
 <style>
 body { font-family: sans-serif; margin: 1em; }
 #main { display: flex; gap: 2em; align-items: flex-start; }
-#picture svg { max-width: 60vw; height: auto; border: 1px solid #ccc; }
+#picture svg { max-width: 55vw; max-height: 80vh; width: auto; height: auto; border: 1px solid #ccc; }
 #plan li { margin: 0.3em 0; }
+#plan .node { cursor: pointer; text-decoration: underline dotted; }
+#plan .info { color: #666; font-size: 0.9em; }
 button.on { font-weight: bold; background: #1f77b4; color: white; }
 #note { color: #d62728; min-height: 1.2em; }
+#candidates { display: flex; flex-wrap: wrap; gap: 0.5em; }
+#candidates figure { margin: 0; cursor: pointer; border: 2px solid #ddd; padding: 2px; }
+#candidates figure.on { border-color: #1f77b4; }
+#candidates svg { width: 160px; height: auto; max-height: 200px; }
 pre#state { background: #f4f4f4; padding: 0.5em; }
 </style>
 </head>
@@ -131,7 +161,8 @@ pre#state { background: #f4f4f4; padding: 0.5em; }
 <p id="note"></p>
 <div id="main">
 <div id="picture"></div>
-<div><h2>Plan</h2><ol id="plan" start="0"></ol></div>
+<div><h2>Plan</h2><ol id="plan" start="0"></ol>
+<h2 id="candidates-title"></h2><div id="candidates"></div></div>
 </div>
 <h2>State</h2>
 <pre id="state"></pre>
@@ -139,7 +170,19 @@ pre#state { background: #f4f4f4; padding: 0.5em; }
 <script>
 const D = JSON.parse(document.getElementById('data').textContent);
 let current = D.autosolve;
+let opened = null;
 const note = (t) => { document.getElementById('note').textContent = t; };
+// The realization that takes `candidate` at choice `c` and changes fewest other choices.
+function nearest(c, candidate) {
+  const now = D.realizations[current].choices;
+  let best = -1, distance = Infinity;
+  D.realizations.forEach((r, k) => {
+    if (r.choices[c] !== candidate) return;
+    const d = r.choices.reduce((n, v, i) => n + (v !== now[i] ? 1 : 0), 0);
+    if (d < distance) { distance = d; best = k; }
+  });
+  return [best, distance];
+}
 function show(k) {
   current = k;
   const r = D.realizations[k];
@@ -150,37 +193,70 @@ function show(k) {
   });
   document.getElementById('state').textContent = JSON.stringify(
     { realization: k, choices: r.choices, max_residual: r.max_residual }, null, 1);
+  if (opened !== null) open(opened);
 }
 function pick(step, candidate) {
   const c = D.plan[step].choice;
-  if (c === null || c === undefined) { note('step ' + step + ' is not a closed-form step'); return false; }
-  const now = D.realizations[current].choices;
-  let best = -1, distance = Infinity;
-  D.realizations.forEach((r, k) => {
-    if (r.choices[c] !== candidate) return;
-    const d = r.choices.reduce((n, v, i) => n + (v !== now[i] ? 1 : 0), 0);
-    if (d < distance) { distance = d; best = k; }
-  });
+  if (c === null || c === undefined) { note('step ' + step + ' has no choice to make'); return false; }
+  const [best, distance] = nearest(c, candidate);
   if (best < 0) {
     note('no realization takes candidate ' + candidate + ' at step ' + step +
-      (D.truncated ? ' among those listed (--max-solutions)' : ' (the redundant constraints rule it out)'));
+      (D.truncated ? ' among those listed (--max-solutions)' : ' (the redundant constraints or the children\'s choices rule it out)'));
     return false;
   }
   note(distance > 1 ? 'other steps changed too: their previous choices have no realization with this one' : '');
   show(best);
   return true;
 }
-document.getElementById('summary').textContent = D.file + ': ' + D.realizations.length +
-  ' realization' + (D.realizations.length === 1 ? '' : 's') + (D.truncated ? ' (more not listed)' : '') +
-  ' of the closed-form steps, the core as solved from the drawing; status ' + D.status +
-  ' (analysis: ' + D.backend + ')';
+// A step's candidates as small drawings, each the realization picking it would show.
+function open(step) {
+  opened = step;
+  const p = D.plan[step];
+  const box = document.getElementById('candidates');
+  box.innerHTML = '';
+  document.getElementById('candidates-title').textContent = 'Candidates of step ' + step;
+  if (p.choice === null || p.choice === undefined) {
+    box.textContent = 'one realization: the one solved from the drawing';
+    return;
+  }
+  for (let k = 0; k < p.offered; k++) {
+    const [best] = nearest(p.choice, k);
+    const f = document.createElement('figure');
+    f.classList.toggle('on', D.realizations[current].choices[p.choice] === k);
+    f.innerHTML = (best < 0 ? '<p>not with these choices</p>' : D.realizations[best].svg) +
+      '<figcaption>candidate ' + k + '</figcaption>';
+    if (best >= 0) f.onclick = () => pick(step, k);
+    box.appendChild(f);
+  }
+}
+const n = D.realizations.length;
+document.getElementById('summary').textContent = D.file + ': ' + n + ' realization' +
+  (n === 1 ? '' : 's') + (D.truncated ? ' (more not listed)' : '') + '; status ' + D.status +
+  ' (analysis: ' + D.backend + '). Click a step to see its candidates.';
+// Depth in the DR-plan: a node's children one deeper.
+const depth = D.plan.map(() => 0);
+for (let k = D.plan.length - 1; k >= 0; k--) (D.plan[k].children || []).forEach((c) => { depth[c] = depth[k] + 1; });
 const plan = document.getElementById('plan');
 D.plan.forEach((p) => {
   const li = document.createElement('li');
-  li.appendChild(document.createTextNode(p.method + ': ' + p.entities.join(', ') + ' (' +
-    p.constraints.join(', ') + ') '));
+  li.style.marginLeft = (1.5 * depth[p.step]) + 'em';
+  const label = document.createElement('span');
+  label.className = 'node';
+  label.textContent = p.method + ': ' + p.entities.join(', ') + ' (' + p.constraints.join(', ') + ')';
+  label.onclick = () => open(p.step);
+  li.appendChild(label);
+  const info = [];
+  if (p.children && p.children.length) info.push('steps ' + p.children.join(', ') + ' as rigid bodies');
+  if (p.paths) info.push(p.paths.real + ' real of ' + p.paths.finite + ' complex, ' + p.paths.tracked + ' paths' +
+    (p.paths.failed ? ', ' + p.paths.failed + ' undecided' : ''));
+  if (info.length) {
+    const i = document.createElement('span');
+    i.className = 'info';
+    i.textContent = ' [' + info.join('; ') + '] ';
+    li.appendChild(i);
+  }
   if (p.choice !== null && p.choice !== undefined) {
-    for (let k = 0; k < p.candidates; k++) {
+    for (let k = 0; k < p.offered; k++) {
       const b = document.createElement('button');
       b.textContent = 'candidate ' + k;
       b.dataset.step = p.step; b.dataset.candidate = k;
@@ -188,7 +264,7 @@ D.plan.forEach((p) => {
       li.appendChild(b);
     }
   } else {
-    li.appendChild(document.createTextNode('(one realization: the one solved from the drawing)'));
+    li.appendChild(document.createTextNode(' (one realization: the one solved from the drawing)'));
   }
   plan.appendChild(li);
 });
@@ -202,6 +278,8 @@ document.getElementById('download').onclick = () => {
 show(current);
 const m = /#choose=([0-9:,]+)/.exec(location.hash);
 if (m) m[1].split(',').forEach((s) => { const [a, b] = s.split(':').map(Number); pick(a, b); });
+const o = /[#&]open=([0-9]+)/.exec(location.hash);
+if (o) open(+o[1]);
 </script>
 </body>
 </html>

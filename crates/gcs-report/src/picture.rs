@@ -119,6 +119,9 @@ pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Ve
     // Model y goes up; SVG's down: y is negated.
     let (x0, y0) = (lo[0] - margin, -hi[1] - margin);
     let (w, h) = (hi[0] - lo[0] + 2.0 * margin, hi[1] - lo[1] + 2.0 * margin);
+    // At least as wide as tall, the drawing centred: the caption's lines are as long as a
+    // square's side.
+    let (x0, w) = if w < h { (x0 - 0.5 * (h - w), h) } else { (x0, w) };
     let head = 0.2 * w.max(h);
     let dot = 0.009 * size;
     let font = 0.024 * w.max(h);
