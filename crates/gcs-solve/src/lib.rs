@@ -25,13 +25,15 @@
 //! reported with its entities and constraints and left at its least-squares point, and the
 //! rest is solved without it.
 //!
-//! With [`SolveOptions::all`], the core's other real realizations are found by homotopy
-//! continuation ([`alternatives`], [`homotopy`]) when its equations are polynomial and it has
-//! at most [`homotopy::MAX_PATHS`] paths.
+//! The core is split along its DR-plan ([`nodes`]: a plane framework's rigid bodies,
+//! recursively), each node a step of the plan. With [`SolveOptions::all`] (or a choice in the
+//! core), every real candidate of each node is found by homotopy continuation ([`alternatives`],
+//! [`homotopy`]) when its equations are polynomial and it has at most [`homotopy::MAX_PATHS`]
+//! paths — a node with children placing their chosen realizations as rigid bodies — and the
+//! core's realizations are every combination of them.
 //!
-//! Not built yet: the full DR-plan recursion (a cluster's children as rigid bodies, which
-//! would keep each node's homotopy small), closed forms for lines and circles, and
-//! backtracking over the core's realizations.
+//! Not built yet: DR-plans of cores other than point-and-distance frameworks (they are one
+//! node), closed forms for lines and circles, and backtracking over the core's realizations.
 //!
 //! A library: it never panics on input and never prints.
 
