@@ -70,5 +70,21 @@ fn main() {
         }
         group.finish();
     }
+    {
+        // The core's DR-plan node by node: chains of m K3,3 joined by three distances (2m − 1
+        // nodes: m K3,3 of 70 paths each, m − 1 assemblies of 6), every node's candidates at
+        // the drawing's choices (one realization listed).
+        let mut group = c.benchmark_group("enumerate-k33-chain-nodes");
+        group.sampling_mode(SamplingMode::Flat).sample_size(10);
+        let one = SolveOptions { all: Some(1), ..SolveOptions::default() };
+        for m in [1, 2, 4] {
+            let system = gcs_model::generate::k33_chain(m, 1);
+            let analysis = analyze(&system, &options()).expect("analysis");
+            group.bench_with_input(BenchmarkId::from_parameter(m), &m, |b, _| {
+                b.iter(|| black_box(solve(&system, &analysis, &one)))
+            });
+        }
+        group.finish();
+    }
     c.final_summary();
 }

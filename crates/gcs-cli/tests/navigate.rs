@@ -92,14 +92,8 @@ fn the_core_nodes_candidates_are_offered() {
 fn a_cad_file_opens_and_a_missing_sketch_is_named() {
     let page = temp("slot.html");
     // (The core as solved: its homotopy, 512 paths, is `gcs solve --all`'s business.)
-    let (code, _, err) = gcs(&[
-        "navigate",
-        "data/cad/slot.slvs",
-        "--max-paths",
-        "0",
-        "-o",
-        page.to_str().unwrap(),
-    ]);
+    let (code, _, err) =
+        gcs(&["navigate", "data/cad/slot.slvs", "--max-paths", "0", "-o", page.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let d = embedded(&std::fs::read_to_string(&page).unwrap());
     assert_eq!(d["model"], "slot/g2");

@@ -356,6 +356,35 @@ pub fn triangle_chain(n: usize, seed: u64) -> System {
     framework(&format!("triangle-chain-{n}"), Dim::Two, &coords, &edges)
 }
 
+/// A chain of `m` K3,3 frameworks in 2D, each joined to the next by three distances (two K3,3
+/// so joined are the witness paper's figure 8a): block `k` has points `6k…6k + 5`, the first
+/// three joined to the last three by all nine distances, its last three joined to the next
+/// block's first three one to one. Random integer coordinates, block by block from left to
+/// right: minimally rigid (`2·6m − 3` bars), and its DR-plan splits it block by block.
+pub fn k33_chain(m: usize, seed: u64) -> System {
+    let m = m.max(1);
+    let mut rng = SplitMix64::new(seed);
+    let coords: Vec<Vec<i64>> = (0..6 * m as i64)
+        .map(|i| {
+            let (block, side, k) = (i / 6, (i % 6) / 3, i % 3);
+            vec![30 * block + 12 * side + rng.range(-3, 3), 8 * k + rng.range(-3, 3)]
+        })
+        .collect();
+    let mut edges = Vec::new();
+    for block in 0..m {
+        let o = 6 * block;
+        for i in 0..3 {
+            for j in 3..6 {
+                edges.push((o + i, o + j));
+            }
+        }
+        if block + 1 < m {
+            edges.extend((3..6).map(|j| (o + j, o + j + 3)));
+        }
+    }
+    framework(&format!("k33-chain-{m}"), Dim::Two, &coords, &edges)
+}
+
 /// A triangulated strip in 2D: `2n` points in two rows, consecutive quads split by a
 /// diagonal — rigid, no redundancy (`2·2n − 3` bars), and W-decomposable at every diagonal.
 pub fn strip(n: usize, seed: u64) -> System {
@@ -392,6 +421,8 @@ mod tests {
         assert_eq!((c.entities().len(), c.constraints().len()), (11, 15));
         let s = strip(6, 1);
         assert_eq!(s.constraints().len(), 2 * 12 - 3);
+        let k = k33_chain(4, 1);
+        assert_eq!((k.entities().len(), k.constraints().len()), (24, 2 * 24 - 3));
         for n in [4, 30] {
             let s = laman_sketch(n, 5);
             assert_eq!(s.constraints().len(), 2 * n - 2);

@@ -160,11 +160,14 @@ fn decompose(
             }
         }
     }
-    let Some((_, bodies)) = best else {
+    let Some((_, mut bodies)) = best else {
         let constraints = bars.iter().map(|b| b.2).collect();
         out.push((vertices, constraints, Vec::new()));
         return out.len() - 1;
     };
+    // The largest body first: the reference of the node's assembly, and the outermost loop of
+    // the enumeration.
+    bodies.sort_by_key(|b| std::cmp::Reverse(b.len()));
     let mut children = Vec::new();
     let mut inside = vec![false; bars.len()];
     for body in &bodies {
@@ -209,6 +212,8 @@ pub(crate) struct Enumerator<'a> {
     pub max_paths: usize,
     /// Homotopies left to run.
     pub budget: std::cell::Cell<usize>,
+    /// The leaves' candidates, once computed.
+    leaves: std::cell::RefCell<std::collections::HashMap<usize, Candidates>>,
 }
 
 /// A choice a node does not offer: the node, the candidate asked for, why not.
@@ -228,7 +233,8 @@ impl<'a> Enumerator<'a> {
         max_paths: usize,
     ) -> Self {
         let budget = std::cell::Cell::new(MAX_ASSEMBLIES);
-        Enumerator { system, layout, equations, nodes, x, scale, max_paths, budget }
+        let leaves = Default::default();
+        Enumerator { system, layout, equations, nodes, x, scale, max_paths, budget, leaves }
     }
 
     /// Node `k`'s candidates with its children at `children` (configurations, in the order
@@ -312,7 +318,11 @@ impl<'a> Enumerator<'a> {
             let children: Vec<&[f64]> =
                 node.children.iter().map(|&c| configs[c].as_slice()).collect();
             let own = node.children.iter().all(|&c| drawn[c]);
-            let candidates = self.candidates(k, &children, own);
+            let candidates = if node.children.is_empty() {
+                self.leaf(k)
+            } else {
+                self.candidates(k, &children, own)
+            };
             let pick = forced.get(k).copied().flatten().unwrap_or(0);
             let Some(config) = candidates.list.get(pick) else {
                 let why = match candidates.list.len() {
@@ -330,75 +340,90 @@ impl<'a> Enumerator<'a> {
 
     /// Every combination of the nodes' candidates (each node at `forced` where given), at most
     /// `limit`: the whole core's configurations with each node's candidate, and whether the
-    /// limit (or the budget of homotopies) cut the list short.
+    /// limit (or the budget of homotopies) cut the list short. Depth first, the first child
+    /// outermost, so that the limit stops the work too.
     pub(crate) fn all(
         &self,
         forced: &[Option<usize>],
         limit: usize,
     ) -> (Vec<(Vec<f64>, Choices)>, bool) {
+        let mut out = Vec::new();
         let mut truncated = false;
-        let Some(root) = self.nodes.len().checked_sub(1) else { return (Vec::new(), false) };
-        let found = self.below(root, forced, limit, &mut truncated);
-        (found.into_iter().map(|(x, c, _)| (x, c)).collect(), truncated || self.budget.get() == 0)
+        let Some(root) = self.nodes.len().checked_sub(1) else { return (out, false) };
+        self.visit(root, forced, &mut |x, choices, _| {
+            if out.len() == limit {
+                truncated = true;
+                return false;
+            }
+            out.push((x, choices));
+            true
+        });
+        (out, truncated || self.budget.get() == 0)
     }
 
-    /// The realizations of node `k`'s subtree: configuration, choices (zero outside the
-    /// subtree), and whether every choice in it is the drawing's.
-    fn below(
+    /// Calls `emit` with each realization of node `k`'s subtree — configuration, choices (zero
+    /// outside the subtree), whether every choice in it is the drawing's — until it returns
+    /// false (then returns false).
+    fn visit(&self, k: usize, forced: &[Option<usize>], emit: &mut Emit<'_>) -> bool {
+        let choices = vec![0; self.nodes.len()];
+        self.combine(k, 0, &mut Vec::new(), &choices, true, forced, emit)
+    }
+
+    /// [`Enumerator::visit`] from node `k`'s child `i` on, the earlier children at `configs`
+    /// with `choices` (`own`: all the drawing's).
+    #[allow(clippy::too_many_arguments)]
+    fn combine(
         &self,
         k: usize,
+        i: usize,
+        configs: &mut Vec<Vec<f64>>,
+        choices: &Choices,
+        own: bool,
         forced: &[Option<usize>],
-        limit: usize,
-        truncated: &mut bool,
-    ) -> Vec<(Vec<f64>, Choices, bool)> {
+        emit: &mut Emit<'_>,
+    ) -> bool {
         let node = &self.nodes[k];
-        let lists: Vec<Vec<(Vec<f64>, Choices, bool)>> =
-            node.children.iter().map(|&c| self.below(c, forced, limit, truncated)).collect();
-        let mut out = Vec::new();
-        if lists.iter().any(Vec::is_empty) {
-            return out;
-        }
-        // Every combination of the children's realizations (an odometer).
-        let mut at = vec![0usize; lists.len()];
-        loop {
-            let children: Vec<&[f64]> =
-                lists.iter().zip(&at).map(|(l, &i)| l[i].0.as_slice()).collect();
-            let own = lists.iter().zip(&at).all(|(l, &i)| l[i].2);
-            let mut choices = vec![0usize; self.nodes.len()];
-            for (l, &i) in lists.iter().zip(&at) {
-                for (c, v) in choices.iter_mut().zip(&l[i].1) {
-                    *c += v;
-                }
-            }
-            let candidates = self.candidates(k, &children, own);
-            for (i, config) in candidates.list.into_iter().enumerate() {
-                if forced.get(k).copied().flatten().is_some_and(|f| f != i) {
+        let Some(&child) = node.children.get(i) else {
+            let children: Vec<&[f64]> = configs.iter().map(Vec::as_slice).collect();
+            let candidates = if node.children.is_empty() {
+                self.leaf(k)
+            } else {
+                self.candidates(k, &children, own)
+            };
+            for (j, config) in candidates.list.iter().enumerate() {
+                if forced.get(k).copied().flatten().is_some_and(|f| f != j) {
                     continue;
                 }
-                if out.len() == limit {
-                    *truncated = true;
-                    return out;
-                }
                 let mut c = choices.clone();
-                c[k] = i;
-                out.push((config, c, own && i == 0));
-            }
-            // The next combination.
-            let mut d = 0;
-            loop {
-                if d == at.len() {
-                    return out;
+                c[k] = j;
+                if !emit(config.clone(), c, own && j == 0) {
+                    return false;
                 }
-                at[d] += 1;
-                if at[d] < lists[d].len() {
-                    break;
-                }
-                at[d] = 0;
-                d += 1;
             }
+            return true;
+        };
+        self.visit(child, forced, &mut |config, below, drawn| {
+            let merged: Choices = choices.iter().zip(&below).map(|(a, b)| a + b).collect();
+            configs.push(config);
+            let go = self.combine(k, i + 1, configs, &merged, own && drawn, forced, emit);
+            configs.pop();
+            go
+        })
+    }
+
+    /// A leaf's candidates, computed once.
+    fn leaf(&self, k: usize) -> Candidates {
+        if let Some(c) = self.leaves.borrow().get(&k) {
+            return c.clone();
         }
+        let c = self.candidates(k, &[], true);
+        self.leaves.borrow_mut().insert(k, c.clone());
+        c
     }
 }
+
+/// What receives the realizations of [`Enumerator::visit`]; false stops it.
+type Emit<'e> = dyn FnMut(Vec<f64>, Choices, bool) -> bool + 'e;
 
 #[cfg(test)]
 mod tests {
