@@ -234,6 +234,16 @@ pub enum ModelErrorKind {
         /// Its kind.
         found: EntityKind,
     },
+    /// An `Orientation` that is not three points in 2D (four in 3D) with a sign of ±1.
+    #[error("constraint \"{id}\": Orientation: field {field}: {why}")]
+    Orientation {
+        /// The constraint id.
+        id: String,
+        /// `points` or `sign`.
+        field: &'static str,
+        /// What is wrong.
+        why: String,
+    },
     /// A `Fix` on an entity without a sketch position.
     #[error("constraint \"{id}\": Fix on \"{entity}\", which has no sketch position to pin it at")]
     FixWithoutPosition {
@@ -257,7 +267,8 @@ impl ModelErrorKind {
             | ModelErrorKind::KindMismatch { id, .. }
             | ModelErrorKind::RepeatedEntity { id, .. }
             | ModelErrorKind::SegmentEndpoint { id, .. }
-            | ModelErrorKind::FixWithoutPosition { id, .. } => Some(id),
+            | ModelErrorKind::FixWithoutPosition { id, .. }
+            | ModelErrorKind::Orientation { id, .. } => Some(id),
             ModelErrorKind::UnknownId { owner, .. }
             | ModelErrorKind::NotAnEntity { owner, .. }
             | ModelErrorKind::NonFinite { owner, .. }
@@ -279,7 +290,8 @@ impl ModelErrorKind {
             | ModelErrorKind::NonFinite { field, .. }
             | ModelErrorKind::NotANumber { field, .. }
             | ModelErrorKind::Negative { field, .. }
-            | ModelErrorKind::SegmentEndpoint { field, .. } => Some(field),
+            | ModelErrorKind::SegmentEndpoint { field, .. }
+            | ModelErrorKind::Orientation { field, .. } => Some(field),
             ModelErrorKind::RepeatedEntity { second, .. } => Some(second),
             ModelErrorKind::UnsupportedDim(_) => Some("dim"),
             ModelErrorKind::DuplicateId { .. } => Some("id"),

@@ -62,5 +62,5 @@ pub use kinds::{ConstraintKind, Dim, Role};
 pub use num_rational::BigRational;
 pub use signature::{Gap, Metric, Signature};
 pub use system::{
-    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, System, SystemBuilder,
+    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, Orientation, System, SystemBuilder,
 };

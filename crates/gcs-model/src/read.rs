@@ -25,20 +25,39 @@ struct RawSystem {
 
 /// A constraint as written in a model file: its kind (the variant name), id, entity ids in the
 /// order of [`ConstraintKind::fields`], and value. Read generically from the kinds' field
-/// table ([`ConstraintKind::ron_fields`]), so that a new kind needs no code here.
+/// table ([`ConstraintKind::ron_fields`]), so that a new kind needs no code here. An
+/// `Orientation` (kind `None`) has its points as `args` and its `sign`.
 struct RawConstraint {
-    kind: ConstraintKind,
+    kind: Option<ConstraintKind>,
     id: String,
     args: Vec<String>,
     value: Option<Num>,
+    sign: Option<i64>,
 }
+
+/// The variant name of an orientation condition in the `constraints` list.
+const ORIENTATION: &str = "Orientation";
+
+/// Its fields.
+const ORIENTATION_FIELDS: [&str; 3] = ["id", "points", "sign"];
+
+/// Every variant name the `constraints` list takes.
+const ITEM_NAMES: [&str; ConstraintKind::ALL.len() + 1] = {
+    let mut names = [ORIENTATION; ConstraintKind::ALL.len() + 1];
+    let mut i = 0;
+    while i < ConstraintKind::ALL.len() {
+        names[i] = ConstraintKind::NAMES[i];
+        i += 1;
+    }
+    names
+};
 
 impl<'de> Deserialize<'de> for RawConstraint {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         use serde::de::{self, EnumAccess, MapAccess, VariantAccess, Visitor};
 
-        /// The variant name.
-        struct Kind(ConstraintKind);
+        /// The variant name (`None`: an orientation).
+        struct Kind(Option<ConstraintKind>);
         impl<'de> Deserialize<'de> for Kind {
             fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
                 struct V;
@@ -48,11 +67,14 @@ impl<'de> Deserialize<'de> for RawConstraint {
                         f.write_str("a constraint kind")
                     }
                     fn visit_str<E: de::Error>(self, v: &str) -> Result<Kind, E> {
+                        if v == ORIENTATION {
+                            return Ok(Kind(None));
+                        }
                         ConstraintKind::ALL
                             .into_iter()
                             .find(|k| k.name() == v)
-                            .map(Kind)
-                            .ok_or_else(|| E::unknown_variant(v, &ConstraintKind::NAMES))
+                            .map(|k| Kind(Some(k)))
+                            .ok_or_else(|| E::unknown_variant(v, &ITEM_NAMES))
                     }
                 }
                 d.deserialize_identifier(V)
@@ -100,7 +122,43 @@ impl<'de> Deserialize<'de> for RawConstraint {
                     .zip(entity_fields)
                     .map(|(a, f)| a.ok_or_else(|| de::Error::missing_field(f)))
                     .collect::<Result<Vec<String>, _>>()?;
-                Ok(RawConstraint { kind, id, args, value: value.flatten() })
+                Ok(RawConstraint { kind: Some(kind), id, args, value: value.flatten(), sign: None })
+            }
+        }
+
+        /// The fields of an orientation.
+        struct OrientationFields;
+        impl<'de> Visitor<'de> for OrientationFields {
+            type Value = RawConstraint;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("the fields of Orientation")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<RawConstraint, A::Error> {
+                let (mut id, mut points, mut sign) = (None, None, None);
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "id" if id.is_none() => id = Some(map.next_value::<String>()?),
+                        "points" if points.is_none() => {
+                            points = Some(map.next_value::<Vec<String>>()?)
+                        }
+                        "sign" if sign.is_none() => sign = Some(map.next_value::<i64>()?),
+                        "id" | "points" | "sign" => {
+                            return Err(de::Error::duplicate_field(match key.as_str() {
+                                "id" => "id",
+                                "points" => "points",
+                                _ => "sign",
+                            }));
+                        }
+                        _ => return Err(de::Error::unknown_field(&key, &ORIENTATION_FIELDS)),
+                    }
+                }
+                Ok(RawConstraint {
+                    kind: None,
+                    id: id.ok_or_else(|| de::Error::missing_field("id"))?,
+                    args: points.ok_or_else(|| de::Error::missing_field("points"))?,
+                    value: None,
+                    sign: Some(sign.ok_or_else(|| de::Error::missing_field("sign"))?),
+                })
             }
         }
 
@@ -111,12 +169,18 @@ impl<'de> Deserialize<'de> for RawConstraint {
                 f.write_str("a constraint")
             }
             fn visit_enum<A: EnumAccess<'de>>(self, data: A) -> Result<RawConstraint, A::Error> {
-                let (Kind(kind), variant) = data.variant::<Kind>()?;
-                variant.struct_variant(kind.ron_fields(), Fields(kind))
+                match data.variant::<Kind>()? {
+                    (Kind(Some(kind)), variant) => {
+                        variant.struct_variant(kind.ron_fields(), Fields(kind))
+                    }
+                    (Kind(None), variant) => {
+                        variant.struct_variant(&ORIENTATION_FIELDS, OrientationFields)
+                    }
+                }
             }
         }
 
-        d.deserialize_enum("Constraint", &ConstraintKind::NAMES, Variant)
+        d.deserialize_enum("Constraint", &ITEM_NAMES, Variant)
     }
 }
 
@@ -175,11 +239,19 @@ fn add_entity(b: &mut SystemBuilder, raw: &RawEntity) -> Result<EntityIdx, Model
     b.entity(read.id, read.geometry, &parts)
 }
 
-fn add_constraint(b: &mut SystemBuilder, raw: &RawConstraint) -> Result<ConstraintIdx, ModelError> {
+/// Adds a constraint (`None` for an orientation, which is no constraint of the system's).
+fn add_constraint(
+    b: &mut SystemBuilder,
+    raw: &RawConstraint,
+) -> Result<Option<ConstraintIdx>, ModelError> {
     let id = raw.id.as_str();
-    let value = raw.value.as_ref().map(|v| number("constraint", id, "value", v)).transpose()?;
     let args: Vec<&str> = raw.args.iter().map(String::as_str).collect();
-    b.constraint(raw.kind, id, &args, value)
+    let Some(kind) = raw.kind else {
+        b.orientation(id, &args, raw.sign.unwrap_or(0))?;
+        return Ok(None);
+    };
+    let value = raw.value.as_ref().map(|v| number("constraint", id, "value", v)).transpose()?;
+    b.constraint(kind, id, &args, value).map(Some)
 }
 
 /// The model name a file gets when it does not give one: the file stem of the origin.
@@ -250,7 +322,9 @@ impl System {
         for (i, c) in raw.constraints.iter().enumerate() {
             let idx = add_constraint(&mut b, c)
                 .map_err(|err| locate_error(err, origin, located.constraints.get(i)))?;
-            constraint_pos.push((idx, located.constraints.get(i).and_then(|l| l.start)));
+            if let Some(idx) = idx {
+                constraint_pos.push((idx, located.constraints.get(i).and_then(|l| l.start)));
+            }
         }
         let mut system = b.build();
         system.set_position(&entity_pos, &constraint_pos);

@@ -96,6 +96,24 @@ pub enum Item {
     Entity(EntityIdx),
     /// A constraint.
     Constraint(ConstraintIdx),
+    /// An orientation condition (its index in [`System::orientations`]).
+    Orientation(usize),
+}
+
+/// A chirality condition, the ESM paper's navigation constraint: the points, in order, turn the
+/// way `sign` says — the sign of the determinant of `(b − a, c − a)` in 2D, of
+/// `(b − a, c − a, d − a)` in 3D (1: counterclockwise in the plane, right-handed in space).
+/// An inequality: it removes no degree of freedom, the analysis does not count it, and the
+/// solver keeps only the realizations where it holds. Written in the `constraints` list as
+/// `Orientation(id: "o", points: ["a", "b", "c"], sign: 1)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Orientation {
+    /// Its id (unique among entities and constraints).
+    pub id: String,
+    /// Its points: three in 2D, four in 3D, distinct.
+    pub points: Vec<EntityIdx>,
+    /// 1 or −1.
+    pub sign: i8,
 }
 
 /// A validated geometric constraint system.
@@ -111,6 +129,7 @@ pub struct System {
     dim: Dim,
     entities: Vec<Entity>,
     constraints: Vec<Constraint>,
+    orientations: Vec<Orientation>,
     ids: HashMap<String, Item>,
 }
 
@@ -133,6 +152,11 @@ impl System {
     /// The constraints, in file order.
     pub fn constraints(&self) -> &[Constraint] {
         &self.constraints
+    }
+
+    /// The orientation conditions (navigation constraints: no equations), in file order.
+    pub fn orientations(&self) -> &[Orientation] {
+        &self.orientations
     }
 
     /// One entity.
@@ -396,6 +420,7 @@ impl SystemBuilder {
                 dim,
                 entities: Vec::new(),
                 constraints: Vec::new(),
+                orientations: Vec::new(),
                 ids: HashMap::new(),
             },
         }
@@ -623,12 +648,14 @@ impl SystemBuilder {
         }
         match self.system.ids.get(id) {
             Some(Item::Entity(e)) => Ok(*e),
-            Some(Item::Constraint(_)) => Err(ModelError::new(ModelErrorKind::NotAnEntity {
-                item,
-                owner: owner.to_owned(),
-                field,
-                id: id.to_owned(),
-            })),
+            Some(Item::Constraint(_) | Item::Orientation(_)) => {
+                Err(ModelError::new(ModelErrorKind::NotAnEntity {
+                    item,
+                    owner: owner.to_owned(),
+                    field,
+                    id: id.to_owned(),
+                }))
+            }
             None => Err(ModelError::new(ModelErrorKind::UnknownId {
                 item,
                 owner: owner.to_owned(),
@@ -649,6 +676,49 @@ impl SystemBuilder {
         value: Option<BigRational>,
     ) -> Result<ConstraintIdx, ModelError> {
         self.push_constraint(kind, id, args, value, None)
+    }
+
+    /// Adds an orientation condition ([`Orientation`]): `points` names three points in 2D,
+    /// four in 3D, all distinct; `sign` is 1 or −1.
+    ///
+    /// # Errors
+    /// A duplicate or empty id, an unknown id, an entity that is not a point, the wrong number
+    /// of points, a point named twice, a sign other than ±1.
+    pub fn orientation(&mut self, id: &str, points: &[&str], sign: i64) -> Result<(), ModelError> {
+        self.claim_id(id)?;
+        let wrong = |field: &'static str, why: String| {
+            Err(ModelError::new(ModelErrorKind::Orientation { id: id.to_owned(), field, why }))
+        };
+        let expected = self.system.dim.coords() + 1;
+        if points.len() != expected {
+            return wrong(
+                "points",
+                format!("{expected} points in {}, found {}", self.system.dim, points.len()),
+            );
+        }
+        let mut resolved = Vec::with_capacity(points.len());
+        for name in points {
+            let e = self.resolve("constraint", id, "points", name)?;
+            let kind = self.system.entity(e).kind();
+            if kind != EntityKind::Point {
+                return wrong("points", format!("\"{name}\" is a {kind}, not a point"));
+            }
+            if resolved.contains(&e) {
+                return wrong("points", format!("\"{name}\" is named twice"));
+            }
+            resolved.push(e);
+        }
+        if sign != 1 && sign != -1 {
+            return wrong("sign", format!("sign {sign}: 1 or -1"));
+        }
+        let index = self.system.orientations.len();
+        self.system.orientations.push(Orientation {
+            id: id.to_owned(),
+            points: resolved,
+            sign: if sign > 0 { 1 } else { -1 },
+        });
+        self.system.ids.insert(id.to_owned(), Item::Orientation(index));
+        Ok(())
     }
 
     fn push_constraint(

@@ -43,6 +43,16 @@ impl System {
             }
             let _ = writeln!(out, "        {s}),");
         }
+        for o in self.orientations() {
+            let points: Vec<String> = o.points.iter().map(|p| quote(&self.entity(*p).id)).collect();
+            let _ = writeln!(
+                out,
+                "        Orientation(id: {}, points: [{}], sign: {}),",
+                quote(&o.id),
+                points.join(", "),
+                o.sign
+            );
+        }
         let _ = writeln!(out, "    ],");
         let _ = writeln!(out, ")");
         out

@@ -109,7 +109,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "constraint_unknown_variant.ron",
-            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, `Fix`, `EqualRadius`, `DistanceX`, `DistanceY`, `TangentAt`, `LengthRatio`, `EqualAngle`, or `EqualDistance` instead",
+            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, `Fix`, `EqualRadius`, `DistanceX`, `DistanceY`, `TangentAt`, `LengthRatio`, `EqualAngle`, `EqualDistance`, or `Orientation` instead",
         ),
         (
             "constraint_missing_field.ron",
@@ -122,6 +122,18 @@ fn every_bad_file_has_its_message() {
         (
             "constraint_as_entity.ron",
             "constraint_as_entity.ron:6:38: constraint \"d\": field b: \"h\" is a constraint, not an entity",
+        ),
+        (
+            "orientation_count.ron",
+            "orientation_count.ron:4:48: constraint \"o\": Orientation: field points: 3 points in 2D, found 2",
+        ),
+        (
+            "orientation_sign.ron",
+            "orientation_sign.ron:4:71: constraint \"o\": Orientation: field sign: sign 2: 1 or -1",
+        ),
+        (
+            "orientation_not_point.ron",
+            "orientation_not_point.ron:4:48: constraint \"o\": Orientation: field points: \"l\" is a line, not a point",
         ),
         (
             "repeated_entity.ron",

@@ -200,6 +200,11 @@ pub struct Report {
     pub entities: usize,
     /// Number of constraints.
     pub constraints: usize,
+    /// Number of orientation conditions (`Orientation` in the constraints list): navigation
+    /// constraints, inequalities that prune realizations and remove no DOF — not counted in
+    /// `constraints`, `equations` or the DOF. Absent when there are none.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub orientations: usize,
     /// Columns of the Jacobian.
     pub unknowns: usize,
     /// Rows of the Jacobian (entity-internal rows included).
@@ -428,6 +433,7 @@ impl Report {
             witness: a.witness.source.into(),
             entities: system.written_entities(),
             constraints: system.written_constraints(),
+            orientations: system.orientations().len(),
             unknowns: a.unknowns,
             equations: a.equations,
             rank: a.rank,
@@ -539,6 +545,18 @@ pub fn text_with_solution(
             system.written_constraints()
         ),
     );
+    if let n @ 1.. = system.orientations().len() {
+        push(
+            &mut out,
+            format!(
+                "  {n} orientation condition{} besides (navigation constraints: {} the solutions, {} no degree of freedom and {} not counted)",
+                plural(n),
+                if n == 1 { "it prunes" } else { "they prune" },
+                if n == 1 { "removes" } else { "remove" },
+                if n == 1 { "is" } else { "are" },
+            ),
+        );
+    }
     let verdict = match (a.rigid(), a.redundant.is_empty()) {
         (true, true) => "well-constrained".to_owned(),
         (true, false) => format!(
@@ -821,4 +839,9 @@ pub fn failure_json(file: &str, message: &str) -> String {
         error: &'a str,
     }
     serde_json::to_string(&Failure { schema: SCHEMA, file, error: message }).unwrap_or_default()
+}
+
+/// Whether a count is zero (a field left out of the JSON then).
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }

@@ -103,6 +103,10 @@ pub struct SolveReport {
     pub redundant: Vec<CheckedReport>,
     /// The parts without a real solution.
     pub no_solution: Vec<NoSolutionReport>,
+    /// The orientation conditions (ids) that do not hold at the solution: no realization the
+    /// plan reaches turns their way (status `inconsistent`). Absent when every one holds.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub turned: Vec<String>,
     /// The steps of the solve, in order.
     pub plan: Vec<PlanReport>,
     /// Closed-form choices reversed by backtracking.
@@ -269,6 +273,7 @@ impl SolveReport {
             conflicting: redundant.iter().filter(|r| r.conflicting).cloned().collect(),
             redundant,
             no_solution,
+            turned: solution.turned.iter().map(|k| system.orientations()[*k].id.clone()).collect(),
             plan,
             backtracked: solution.backtracked,
             bound_hit: solution.bound_hit,
@@ -305,6 +310,13 @@ impl SolveReport {
         let mut out = format!("{}: {}\n", self.file, self.model);
         let status = match self.status.as_str() {
             "solved" => "solved: every constraint holds".to_owned(),
+            "inconsistent" if self.conflicting.is_empty() && self.no_solution.is_empty() => {
+                format!(
+                    "INCONSISTENT: {} orientation condition{} cannot hold",
+                    self.turned.len(),
+                    if self.turned.len() == 1 { "" } else { "s" }
+                )
+            }
             "inconsistent" if self.conflicting.is_empty() => format!(
                 "INCONSISTENT: {} part{} without a real solution (the rest is solved)",
                 self.no_solution.len(),
@@ -336,6 +348,11 @@ impl SolveReport {
                 "  no real solution: {} cannot all hold (entities {}): change a value\n",
                 n.constraints.join(", "),
                 n.entities.join(", ")
+            ));
+        }
+        for o in &self.turned {
+            out.push_str(&format!(
+                "  orientation {o} does not hold: no realization the plan reaches turns that way (change its sign or a value)\n"
             ));
         }
         let closed = self.plan.iter().filter(|p| p.method == "closed-form").count();

@@ -192,6 +192,10 @@ pub struct Solution {
     /// node of the core's DR-plan (the first steps of `plan`, [`PlanStep::children`]), a
     /// node's candidate counted among those its children's choices give; `None` without it.
     pub node_choices: Option<Vec<Vec<usize>>>,
+    /// The orientation conditions ([`System::orientations`], by index) that do not hold at the
+    /// solution: no realization the plan reaches turns their way (status `Inconsistent`).
+    /// Realizations of `solutions` keep every one.
+    pub turned: Vec<usize>,
 }
 
 /// A part of the system that has no real solution (with the choices made for the rest).
@@ -667,7 +671,9 @@ impl Drawn {
 }
 
 /// Places the point of a closed-form step: the real candidates, the one on the drawing's side
-/// of the anchors (ties by least displacement from the drawing); `None` when there is none.
+/// of the anchors (ties by least displacement from the drawing; `flip`: the other, for
+/// backtracking; `forced`: the user's), unless it breaks an orientation condition the step
+/// completes (`completes`) and the other does not; `None` when there is none.
 #[allow(clippy::too_many_arguments)]
 fn place(
     step: &plan::Step,
@@ -676,8 +682,8 @@ fn place(
     equations: &Equations<'_>,
     drawing: &Drawn,
     x: &[f64],
-    flip: bool,
-    forced: Option<usize>,
+    (flip, forced): (bool, Option<usize>),
+    completes: &[&gcs_model::Orientation],
 ) -> Placed {
     let now = Loci::at(step, system, equations, layout, x);
     let (candidates, fallback) = now.candidates(at(layout, x, step.point));
@@ -696,6 +702,20 @@ fn place(
         Some(k) => (k < candidates.len()).then_some(k),
         None if flip && candidates.len() == 2 => chosen.map(|k| 1 - k),
         None => chosen,
+    };
+    // The orientation conditions the step completes: the other candidate when this one turns
+    // the wrong way, none when both do.
+    let turns = |k: usize| {
+        completes.is_empty() || {
+            let mut y = x.to_vec();
+            let col = layout.columns(step.point).start;
+            (y[col], y[col + 1]) = (candidates[k][0], candidates[k][1]);
+            completes.iter().all(|o| orientation_holds(layout, &y, o))
+        }
+    };
+    let chosen = match (forced, chosen) {
+        (None, Some(k)) if !turns(k) => (candidates.len() == 2 && turns(1 - k)).then(|| 1 - k),
+        (_, c) => c,
     };
     Placed {
         at: chosen.map_or(fallback, |k| candidates[k]),
@@ -750,6 +770,16 @@ pub fn solve(
         plan::construction(system, &solved)
     } else {
         plan::Construction { steps: Vec::new(), core: solved.clone() }
+    };
+    // Each orientation condition's depth: after which closed-form step its points are all
+    // placed (0: the core's, or entities no step places).
+    let orientations = system.orientations();
+    let orientation_depth: Vec<usize> = {
+        let placed: std::collections::HashMap<EntityIdx, usize> =
+            construction.steps.iter().enumerate().map(|(k, s)| (s.point, k + 1)).collect();
+        (orientations.iter())
+            .map(|o| o.points.iter().filter_map(|p| placed.get(p).copied()).max().unwrap_or(0))
+            .collect()
     };
     let mut x = x0.clone();
     let mut no_solution: Vec<NoSolution> = Vec::new();
@@ -849,9 +879,20 @@ pub fn solve(
     let enumerable = no_solution.is_empty()
         && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
         && options.max_paths > 0;
-    if (options.all.is_some() || chosen_core) && enumerable {
+    // The orientation conditions on the core's points: when the solved core breaks one, its
+    // realizations are searched for one that keeps them all.
+    let core_entities: std::collections::HashSet<EntityIdx> =
+        core_nodes.last().map(|n| n.entities.iter().copied().collect()).unwrap_or_default();
+    let core_orientations: Vec<&gcs_model::Orientation> =
+        (orientations.iter().zip(&orientation_depth))
+            .filter(|(o, d)| **d == 0 && o.points.iter().all(|p| core_entities.contains(p)))
+            .map(|(o, _)| o)
+            .collect();
+    let core_turned = core_orientations.iter().any(|o| !orientation_holds(&layout, &x, o));
+    let mut backtracked = 0;
+    if (options.all.is_some() || chosen_core || core_turned) && enumerable {
         let solved = x.clone();
-        let enumerator = nodes::Enumerator::new(
+        let mut enumerator = nodes::Enumerator::new(
             system,
             &layout,
             &equations,
@@ -860,23 +901,39 @@ pub fn solve(
             scale,
             options.max_paths,
         );
-        match enumerator.choose(&node_forced) {
-            Ok((at, found)) => {
+        enumerator.orientations = core_orientations.clone();
+        let mut chosen = enumerator.choose(&node_forced);
+        // No node choice of the user's: where the drawing's choices give no realization the
+        // orientation conditions allow, the first combination that does (depth first: the
+        // nodes' other candidates tried before giving up).
+        if chosen.is_err() && !chosen_core {
+            let (first, _) = enumerator.all(&node_forced, 1);
+            if let Some((_, picks)) = first.first() {
+                backtracked += picks.iter().filter(|k| **k != 0).count();
+                chosen = enumerator.choose(&picks.iter().map(|k| Some(*k)).collect::<Vec<_>>());
+            }
+        }
+        match chosen {
+            Ok((at, found, picks)) => {
                 for (step, candidates) in plan.iter_mut().zip(found) {
                     step.candidates = candidates.list.len();
                     step.complete = candidates.complete;
                     step.paths = candidates.counts;
                 }
-                for (step, forced) in plan.iter_mut().zip(&node_forced) {
-                    step.chosen = Some(forced.unwrap_or(0));
+                for ((step, forced), pick) in plan.iter_mut().zip(&node_forced).zip(&picks) {
+                    step.chosen = Some(*pick);
                     step.fixed = forced.is_some();
                 }
                 x = at;
-                cores = vec![(x.clone(), node_forced.iter().map(|f| f.unwrap_or(0)).collect())];
+                cores = vec![(x.clone(), picks)];
             }
-            Err((step, candidate, why)) => {
+            // The user's choice is not offered: an error.
+            Err((step, candidate, why)) if chosen_core => {
                 return Err(SolveError::Choice { step, candidate, why });
             }
+            // No realization keeps the orientation conditions: the core stays as solved, and
+            // the report names the conditions it breaks.
+            Err(_) => {}
         }
         if let Some(limit) = options.all {
             let (found, cut) = enumerator.all(&node_forced, limit.max(1));
@@ -932,15 +989,30 @@ pub fn solve(
         .map(|step| Drawn::of(step, system, &equations, &layout, &x0))
         .collect();
     let mut flips = vec![false; construction.steps.len()];
-    let mut backtracked = 0;
     let mut bound_hit = false;
+    // The orientation conditions each closed-form step completes.
+    let mut completes: Vec<Vec<&gcs_model::Orientation>> =
+        vec![Vec::new(); construction.steps.len()];
+    for (o, &d) in orientations.iter().zip(&orientation_depth) {
+        if d > 0 {
+            completes[d - 1].push(o);
+        }
+    }
     loop {
         x.copy_from_slice(&core_x);
         let mut first_failure = None;
         let mut confidence = vec![f64::INFINITY; construction.steps.len()];
         for (k, step) in construction.steps.iter().enumerate() {
-            let placed =
-                place(step, &layout, system, &equations, &drawings[k], &x, flips[k], forced[k]);
+            let placed = place(
+                step,
+                &layout,
+                system,
+                &equations,
+                &drawings[k],
+                &x,
+                (flips[k], forced[k]),
+                &completes[k],
+            );
             let col = layout.columns(step.point).start;
             (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
             if placed.candidates == 2 && forced[k].is_none() {
@@ -983,8 +1055,16 @@ pub fn solve(
     // turn, they join its part.
     let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
     for (k, step) in construction.steps.iter().enumerate() {
-        let placed =
-            place(step, &layout, system, &equations, &drawings[k], &x, flips[k], forced[k]);
+        let placed = place(
+            step,
+            &layout,
+            system,
+            &equations,
+            &drawings[k],
+            &x,
+            (flips[k], forced[k]),
+            &completes[k],
+        );
         let col = layout.columns(step.point).start;
         (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
         if placed.chosen.is_none() {
@@ -1075,9 +1155,17 @@ pub fn solve(
             }
         })
         .collect();
+    // The orientation conditions that do not hold at the solution.
+    let turned: Vec<usize> = (orientations.iter().enumerate())
+        .filter(|(_, o)| !orientation_holds(&layout, &x, o))
+        .map(|(k, _)| k)
+        .collect();
     let status = if !converged {
         Status::Failed
-    } else if redundant.iter().any(|r| r.conflicting) || !no_solution.is_empty() {
+    } else if redundant.iter().any(|r| r.conflicting)
+        || !no_solution.is_empty()
+        || !turned.is_empty()
+    {
         Status::Inconsistent
     } else {
         Status::Solved
@@ -1099,7 +1187,8 @@ pub fn solve(
                     equations.residual(r.constraint, y).is_some_and(|res| {
                         res.values.iter().all(|v| v.abs() <= r.allowance.max(r.residual.abs()))
                     })
-                })
+                }) && (orientations.iter().zip(&orientation_depth))
+                    .all(|(o, d)| *d != depth || orientation_holds(&layout, y, o))
             };
             let mut found = Realizations {
                 limit,
@@ -1167,6 +1256,7 @@ pub fn solve(
         truncated,
         core_choices,
         node_choices,
+        turned,
     })
 }
 
@@ -1304,6 +1394,31 @@ pub fn max_relative_residual(system: &System, x: &[f64], scale: f64) -> f64 {
         .constraint_indices()
         .filter_map(|c| relative(system, &equations, c, x, scale))
         .fold(0.0, f64::max)
+}
+
+/// Whether an orientation condition holds at the configuration `x` (over the layout's
+/// columns): the determinant of its points' differences (`(b − a, c − a)` in 2D,
+/// `(b − a, c − a, d − a)` in 3D) has its sign — strictly, beyond 1e-12 of the product of the
+/// differences' lengths (points in line, or in a plane, turn neither way).
+pub fn orientation_holds(layout: &Layout, x: &[f64], o: &gcs_model::Orientation) -> bool {
+    let point = |p: EntityIdx| -> Vec<f64> { layout.columns(p).map(|c| x[c]).collect() };
+    let Some((first, rest)) = o.points.split_first() else { return false };
+    let a = point(*first);
+    let d: Vec<Vec<f64>> =
+        rest.iter().map(|p| point(*p).iter().zip(&a).map(|(u, v)| u - v).collect()).collect();
+    let length = |v: &Vec<f64>| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let (det, size) = match d.as_slice() {
+        [u, v] if u.len() == 2 && v.len() == 2 => {
+            (u[0] * v[1] - u[1] * v[0], length(u) * length(v))
+        }
+        [u, v, w] if u.len() == 3 && v.len() == 3 && w.len() == 3 => (
+            u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                + u[2] * (v[0] * w[1] - v[1] * w[0]),
+            length(u) * length(v) * length(w),
+        ),
+        _ => return false,
+    };
+    det * f64::from(o.sign) > 1e-12 * size
 }
 
 /// The triangles of distances of a plane system (three points joined pairwise by

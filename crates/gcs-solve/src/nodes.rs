@@ -195,8 +195,10 @@ pub(crate) struct Candidates {
     pub counts: Option<PathCounts>,
     /// The configurations, whole (the solved configuration outside the node).
     pub list: Vec<Vec<f64>>,
-    /// Whether `list` is every real solution.
+    /// Whether `list` is every real solution (that the orientation conditions allow).
     pub complete: bool,
+    /// Whether `list[0]` is the solved configuration (the drawing's candidate).
+    pub drawn_first: bool,
 }
 
 /// The enumeration of a core's DR-plan at a solved configuration.
@@ -214,6 +216,9 @@ pub(crate) struct Enumerator<'a> {
     pub budget: std::cell::Cell<usize>,
     /// The leaves' candidates, once computed.
     leaves: std::cell::RefCell<std::collections::HashMap<usize, Candidates>>,
+    /// The orientation conditions on the core's points: a node's candidates are those where
+    /// each condition on its points holds.
+    pub orientations: Vec<&'a gcs_model::Orientation>,
 }
 
 /// A choice a node does not offer: the node, the candidate asked for, why not.
@@ -234,7 +239,18 @@ impl<'a> Enumerator<'a> {
     ) -> Self {
         let budget = std::cell::Cell::new(MAX_ASSEMBLIES);
         let leaves = Default::default();
-        Enumerator { system, layout, equations, nodes, x, scale, max_paths, budget, leaves }
+        Enumerator {
+            system,
+            layout,
+            equations,
+            nodes,
+            x,
+            scale,
+            max_paths,
+            budget,
+            leaves,
+            orientations: Vec::new(),
+        }
     }
 
     /// Node `k`'s candidates with its children at `children` (configurations, in the order
@@ -242,9 +258,34 @@ impl<'a> Enumerator<'a> {
     /// one of them, and comes first.
     pub(crate) fn candidates(&self, k: usize, children: &[&[f64]], own: bool) -> Candidates {
         let node = &self.nodes[k];
+        let mut candidates = self.unfiltered(k, children, own);
+        // The orientation conditions on the node's points prune its candidates.
+        let on: Vec<&gcs_model::Orientation> = (self.orientations.iter().copied())
+            .filter(|o| o.points.iter().all(|p| node.entities.contains(p)))
+            .collect();
+        if !on.is_empty() {
+            let before = candidates.list.len();
+            candidates
+                .list
+                .retain(|y| on.iter().all(|o| crate::orientation_holds(self.layout, y, o)));
+            if candidates.list.len() < before && candidates.drawn_first {
+                candidates.drawn_first = candidates.list.first().is_some_and(|y| y == self.x);
+            }
+        }
+        candidates
+    }
+
+    /// [`Enumerator::candidates`] before the orientation conditions.
+    fn unfiltered(&self, k: usize, children: &[&[f64]], own: bool) -> Candidates {
+        let node = &self.nodes[k];
         let seed = 0x5eed ^ (k as u64).wrapping_mul(0x9E37_79B9);
         if node.single_distance(self.system) && own {
-            return Candidates { counts: None, list: vec![self.x.to_vec()], complete: true };
+            return Candidates {
+                counts: None,
+                list: vec![self.x.to_vec()],
+                complete: true,
+                drawn_first: true,
+            };
         }
         let found = if self.budget.get() == 0 {
             None
@@ -295,25 +336,28 @@ impl<'a> Enumerator<'a> {
                     }
                     complete &= near;
                 }
-                Candidates { counts: Some(counts), list, complete }
+                Candidates { counts: Some(counts), list, complete, drawn_first: own }
             }
             None => Candidates {
                 counts: None,
                 list: if own { vec![self.x.to_vec()] } else { Vec::new() },
                 complete: false,
+                drawn_first: own,
             },
         }
     }
 
     /// The configuration at the choices `forced` (per node; `None`: candidate 0), with each
-    /// node's candidates there; `Err((node, candidate, why))` when a choice is not offered.
+    /// node's candidates there and the choices taken; `Err((node, candidate, why))` when a
+    /// choice is not offered.
     pub(crate) fn choose(
         &self,
         forced: &[Option<usize>],
-    ) -> Result<(Vec<f64>, Vec<Candidates>), Refused> {
+    ) -> Result<(Vec<f64>, Vec<Candidates>, Choices), Refused> {
         let mut configs: Vec<Vec<f64>> = Vec::with_capacity(self.nodes.len());
         let mut drawn: Vec<bool> = Vec::with_capacity(self.nodes.len());
         let mut all = Vec::with_capacity(self.nodes.len());
+        let mut picks = Vec::with_capacity(self.nodes.len());
         for (k, node) in self.nodes.iter().enumerate() {
             let children: Vec<&[f64]> =
                 node.children.iter().map(|&c| configs[c].as_slice()).collect();
@@ -332,10 +376,11 @@ impl<'a> Enumerator<'a> {
                 return Err((k, pick, why));
             };
             configs.push(config.clone());
-            drawn.push(own && pick == 0);
+            drawn.push(candidates.drawn_first && pick == 0);
             all.push(candidates);
+            picks.push(pick);
         }
-        Ok((configs.pop().unwrap_or_else(|| self.x.to_vec()), all))
+        Ok((configs.pop().unwrap_or_else(|| self.x.to_vec()), all, picks))
     }
 
     /// Every combination of the nodes' candidates (each node at `forced` where given), at most
@@ -396,7 +441,7 @@ impl<'a> Enumerator<'a> {
                 }
                 let mut c = choices.clone();
                 c[k] = j;
-                if !emit(config.clone(), c, own && j == 0) {
+                if !emit(config.clone(), c, candidates.drawn_first && j == 0) {
                     return false;
                 }
             }
@@ -534,7 +579,7 @@ mod tests {
         let eq = Equations::new(&s, &layout);
         let x: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
         let e = Enumerator::new(&s, &layout, &eq, &nodes, &x, 29.0, MAX_PATHS);
-        let (at, found) = e.choose(&[None, None, None]).unwrap();
+        let (at, found, _) = e.choose(&[None, None, None]).unwrap();
         assert!(at.iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9));
         for leaf in &found[..2] {
             let c = leaf.counts.unwrap();
@@ -545,7 +590,7 @@ mod tests {
         assert_eq!((root.paths, root.failed), (6, 0), "{root:?}");
         assert!(found[2].complete && root.finite <= 6);
         // The second candidate of the first K3,3: the assembly moves with it.
-        let (other, _) = e.choose(&[Some(1), None, Some(0)]).unwrap();
+        let (other, _, _) = e.choose(&[Some(1), None, Some(0)]).unwrap();
         assert!(holds(&s, &other));
         assert!(other.iter().zip(&x).any(|(a, b)| (a - b).abs() > 1e-3));
         let k33 = framework(

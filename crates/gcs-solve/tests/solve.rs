@@ -620,3 +620,113 @@ fn the_core_realizations_come_from_homotopy_continuation() {
         Err(gcs_solve::SolveError::Choice { step: 2, .. })
     ));
 }
+
+/// The prism of `the_core_realizations_come_from_homotopy_continuation` (its core splits into
+/// two triangles and their assembly), with `extra` appended to its constraints.
+fn prism_with(extra: &str) -> System {
+    let points: [[f64; 2]; 6] =
+        [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7]];
+    let edges = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)];
+    let mut text = String::from("System(dim: 2, entities: [");
+    for (i, p) in points.iter().enumerate() {
+        text += &format!("Point(id: \"p{i}\", at: [{}, {}]),", p[0], p[1]);
+    }
+    text += "], constraints: [";
+    for (a, b) in edges {
+        let d = (points[a][0] - points[b][0]).hypot(points[a][1] - points[b][1]);
+        text += &format!("Distance(id: \"d{a}{b}\", a: \"p{a}\", b: \"p{b}\", value: {d}),");
+    }
+    text += extra;
+    text += "])";
+    model(&text)
+}
+
+/// An orientation condition on a closed-form step's point: the drawing shows `c` to the left
+/// of `a → b`, the condition wants it to the right; the solve takes the other candidate, and
+/// `--all` lists only the realizations that turn its way.
+#[test]
+fn an_orientation_condition_picks_the_side_of_a_closed_form_point() {
+    let text = |orientation: &str| {
+        format!(
+            r#"System(dim: 2, entities: [Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]),
+                Point(id: "c", at: [2, 3]), Point(id: "d", at: [6, 3])],
+            constraints: [Distance(id: "ab", a: "a", b: "b", value: 4),
+                Distance(id: "ac", a: "a", b: "c", value: 3.6055513),
+                Distance(id: "bc", a: "b", b: "c", value: 3.6055513),
+                Distance(id: "bd", a: "b", b: "d", value: 3.6055513),
+                Distance(id: "cd", a: "c", b: "d", value: 4), {orientation}])"#
+        )
+    };
+    let drawn = model(&text(""));
+    let s = model(&text(r#"Orientation(id: "below", points: ["a", "b", "c"], sign: -1)"#));
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Solved, "{:?}", sol.turned);
+    assert!(point(&s, &sol.x, "c").1 < 0.0, "c below the line: {:?}", point(&s, &sol.x, "c"));
+    assert!(distances_hold(&s, &sol.x));
+    // Every listed realization turns its way, and they are exactly those of the sketch
+    // without the condition that do.
+    let all = SolveOptions { all: Some(64), ..SolveOptions::default() };
+    let with = solve_with(&s, &all).solutions.unwrap();
+    let without = solve_with(&drawn, &SolveOptions { all: Some(64), ..SolveOptions::default() })
+        .solutions
+        .unwrap();
+    let below = |x: &Vec<f64>| point(&s, x, "c").1 < 0.0;
+    assert_eq!(with.len(), without.iter().filter(|x| below(x)).count());
+    assert!(with.len() >= 1 && with.len() < without.len(), "{} of {}", with.len(), without.len());
+    assert!(with.iter().all(below));
+    // The analysis counts no orientation: the DOF are those of the sketch without it.
+    let (a, b) = (
+        analyze(&s, &AnalysisOptions::default()).unwrap(),
+        analyze(&drawn, &AnalysisOptions::default()).unwrap(),
+    );
+    assert_eq!((a.dof, a.rank), (b.dof, b.rank));
+}
+
+/// An orientation condition on the core: the prism's first triangle turned against the
+/// drawing. The solved core breaks it, so the core's DR-plan is searched: the triangle's
+/// candidates are pruned to the mirrored one, and the assembly is solved for it — the
+/// drawing's chirality overruled where the user asked, every distance holding.
+#[test]
+fn an_orientation_condition_on_the_core_forces_another_child_choice() {
+    let plain = prism_with("");
+    let turned = prism_with(r#"Orientation(id: "o", points: ["p0", "p1", "p2"], sign: -1),"#);
+    let sol = run(&turned);
+    assert_eq!(sol.status, Status::Solved, "{:?} {:?}", sol.turned, sol.plan);
+    assert!(distances_hold(&turned, &sol.x));
+    let layout = gcs_jacobian::Layout::new(&turned);
+    assert!(gcs_solve::orientation_holds(&layout, &sol.x, &turned.orientations()[0]));
+    // The other triangle keeps the drawing's turn.
+    let same = gcs_model::Orientation {
+        id: "q".into(),
+        points: ["p3", "p4", "p5"].map(|p| turned.entity_by_id(p).unwrap()).to_vec(),
+        sign: 1,
+    };
+    let drawn_turn = gcs_solve::orientation_holds(&layout, &run(&plain).x, &same);
+    assert_eq!(gcs_solve::orientation_holds(&layout, &sol.x, &same), drawn_turn);
+    // With --all: exactly the realizations of the plain prism that turn the condition's way.
+    let all = SolveOptions { all: Some(1000), ..SolveOptions::default() };
+    let with = solve_with(&turned, &all).solutions.unwrap();
+    let without = solve_with(&plain, &all).solutions.unwrap();
+    let o = &turned.orientations()[0];
+    let kept: Vec<&Vec<f64>> =
+        without.iter().filter(|x| gcs_solve::orientation_holds(&layout, x, o)).collect();
+    assert_eq!(with.len(), kept.len());
+    assert!(!with.is_empty() && with.len() < without.len());
+    for x in &with {
+        assert!(kept.iter().any(|y| x.iter().zip(y.iter()).all(|(a, b)| (a - b).abs() < 1e-7)));
+    }
+}
+
+/// Two orientation conditions that contradict each other: no realization keeps both, and the
+/// solve says so (status inconsistent, the condition named) rather than pretending.
+#[test]
+fn contradicting_orientations_are_reported() {
+    let s = prism_with(
+        r#"Orientation(id: "o1", points: ["p0", "p1", "p2"], sign: 1),
+           Orientation(id: "o2", points: ["p1", "p0", "p2"], sign: 1),"#,
+    );
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Inconsistent);
+    assert_eq!(sol.turned.len(), 1, "{:?}", sol.turned);
+    assert!(distances_hold(&s, &sol.x), "the rest is solved");
+}
