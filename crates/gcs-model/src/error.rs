@@ -244,6 +244,14 @@ pub enum ModelErrorKind {
         /// What is wrong.
         why: String,
     },
+    /// A `Group` with no entity, or one named twice.
+    #[error("group \"{id}\": field entities: {why}")]
+    Group {
+        /// The group id.
+        id: String,
+        /// What is wrong.
+        why: String,
+    },
     /// A `Fix` on an entity without a sketch position.
     #[error("constraint \"{id}\": Fix on \"{entity}\", which has no sketch position to pin it at")]
     FixWithoutPosition {
@@ -268,7 +276,8 @@ impl ModelErrorKind {
             | ModelErrorKind::RepeatedEntity { id, .. }
             | ModelErrorKind::SegmentEndpoint { id, .. }
             | ModelErrorKind::FixWithoutPosition { id, .. }
-            | ModelErrorKind::Orientation { id, .. } => Some(id),
+            | ModelErrorKind::Orientation { id, .. }
+            | ModelErrorKind::Group { id, .. } => Some(id),
             ModelErrorKind::UnknownId { owner, .. }
             | ModelErrorKind::NotAnEntity { owner, .. }
             | ModelErrorKind::NonFinite { owner, .. }
@@ -293,6 +302,7 @@ impl ModelErrorKind {
             | ModelErrorKind::SegmentEndpoint { field, .. }
             | ModelErrorKind::Orientation { field, .. } => Some(field),
             ModelErrorKind::RepeatedEntity { second, .. } => Some(second),
+            ModelErrorKind::Group { .. } => Some("entities"),
             ModelErrorKind::UnsupportedDim(_) => Some("dim"),
             ModelErrorKind::DuplicateId { .. } => Some("id"),
             ModelErrorKind::Degenerate { field, .. } => *field,

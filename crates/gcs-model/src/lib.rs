@@ -62,5 +62,6 @@ pub use kinds::{ConstraintKind, Dim, Role};
 pub use num_rational::BigRational;
 pub use signature::{Gap, Metric, Signature};
 pub use system::{
-    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Item, Orientation, System, SystemBuilder,
+    Constraint, ConstraintIdx, Coords, Entity, EntityIdx, Group, Item, Orientation, System,
+    SystemBuilder,
 };

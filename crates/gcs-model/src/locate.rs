@@ -152,6 +152,7 @@ pub(crate) struct Located {
     pub(crate) fields: HashMap<String, Position>,
     pub(crate) entities: Vec<ItemLoc>,
     pub(crate) constraints: Vec<ItemLoc>,
+    pub(crate) groups: Vec<ItemLoc>,
 }
 
 struct Walker {
@@ -288,6 +289,7 @@ pub(crate) fn locate(text: &str) -> Located {
         match name.as_str() {
             "entities" => located.entities = w.items(),
             "constraints" => located.constraints = w.items(),
+            "groups" => located.groups = w.items(),
             _ => w.skip_value(),
         }
     });

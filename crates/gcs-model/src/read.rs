@@ -21,6 +21,15 @@ struct RawSystem {
     entities: Vec<RawEntity>,
     #[serde(default)]
     constraints: Vec<RawConstraint>,
+    #[serde(default)]
+    groups: Vec<RawGroup>,
+}
+
+/// A group as written: `Group(id: "g", entities: ["a", "b"])`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+enum RawGroup {
+    Group { id: String, entities: Vec<String> },
 }
 
 /// A constraint as written in a model file: its kind (the variant name), id, entity ids in the
@@ -325,6 +334,10 @@ impl System {
             if let Some(idx) = idx {
                 constraint_pos.push((idx, located.constraints.get(i).and_then(|l| l.start)));
             }
+        }
+        for (i, RawGroup::Group { id, entities }) in raw.groups.iter().enumerate() {
+            let names: Vec<&str> = entities.iter().map(String::as_str).collect();
+            b.group(id, &names).map_err(|err| locate_error(err, origin, located.groups.get(i)))?;
         }
         let mut system = b.build();
         system.set_position(&entity_pos, &constraint_pos);

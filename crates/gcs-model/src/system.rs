@@ -98,6 +98,20 @@ pub enum Item {
     Constraint(ConstraintIdx),
     /// An orientation condition (its index in [`System::orientations`]).
     Orientation(usize),
+    /// A group (its index in [`System::groups`]).
+    Group(usize),
+}
+
+/// A feature or part the user declares (the ESM paper's feature incorporation): a set of
+/// entities meant to be solved as a whole. Where the group is rigid on its own and lies in the
+/// part of a plane sketch the solve splits into a DR-plan, it is a node of that plan. Written
+/// in the optional `groups` list as `Group(id: "g", entities: ["a", "b", "c"])`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Group {
+    /// Its id (unique among all ids).
+    pub id: String,
+    /// Its entities, as written (distinct).
+    pub entities: Vec<EntityIdx>,
 }
 
 /// A chirality condition, the ESM paper's navigation constraint: the points, in order, turn the
@@ -130,6 +144,7 @@ pub struct System {
     entities: Vec<Entity>,
     constraints: Vec<Constraint>,
     orientations: Vec<Orientation>,
+    groups: Vec<Group>,
     ids: HashMap<String, Item>,
 }
 
@@ -157,6 +172,11 @@ impl System {
     /// The orientation conditions (navigation constraints: no equations), in file order.
     pub fn orientations(&self) -> &[Orientation] {
         &self.orientations
+    }
+
+    /// The groups the user declared, in file order.
+    pub fn groups(&self) -> &[Group] {
+        &self.groups
     }
 
     /// One entity.
@@ -421,6 +441,7 @@ impl SystemBuilder {
                 entities: Vec::new(),
                 constraints: Vec::new(),
                 orientations: Vec::new(),
+                groups: Vec::new(),
                 ids: HashMap::new(),
             },
         }
@@ -648,7 +669,7 @@ impl SystemBuilder {
         }
         match self.system.ids.get(id) {
             Some(Item::Entity(e)) => Ok(*e),
-            Some(Item::Constraint(_) | Item::Orientation(_)) => {
+            Some(Item::Constraint(_) | Item::Orientation(_) | Item::Group(_)) => {
                 Err(ModelError::new(ModelErrorKind::NotAnEntity {
                     item,
                     owner: owner.to_owned(),
@@ -676,6 +697,35 @@ impl SystemBuilder {
         value: Option<BigRational>,
     ) -> Result<ConstraintIdx, ModelError> {
         self.push_constraint(kind, id, args, value, None)
+    }
+
+    /// Adds a group ([`Group`]) of the named entities (at least one, each once).
+    ///
+    /// # Errors
+    /// A duplicate or empty id, an unknown id, no entity, an entity named twice.
+    pub fn group(&mut self, id: &str, entities: &[&str]) -> Result<(), ModelError> {
+        self.claim_id(id)?;
+        if entities.is_empty() {
+            return Err(ModelError::new(ModelErrorKind::Group {
+                id: id.to_owned(),
+                why: "no entity".to_owned(),
+            }));
+        }
+        let mut resolved = Vec::with_capacity(entities.len());
+        for name in entities {
+            let e = self.resolve("group", id, "entities", name)?;
+            if resolved.contains(&e) {
+                return Err(ModelError::new(ModelErrorKind::Group {
+                    id: id.to_owned(),
+                    why: format!("\"{name}\" is named twice"),
+                }));
+            }
+            resolved.push(e);
+        }
+        let index = self.system.groups.len();
+        self.system.groups.push(Group { id: id.to_owned(), entities: resolved });
+        self.system.ids.insert(id.to_owned(), Item::Group(index));
+        Ok(())
     }
 
     /// Adds an orientation condition ([`Orientation`]): `points` names three points in 2D,

@@ -54,6 +54,20 @@ impl System {
             );
         }
         let _ = writeln!(out, "    ],");
+        if !self.groups().is_empty() {
+            let _ = writeln!(out, "    groups: [");
+            for g in self.groups() {
+                let entities: Vec<String> =
+                    g.entities.iter().map(|e| quote(&self.entity(*e).id)).collect();
+                let _ = writeln!(
+                    out,
+                    "        Group(id: {}, entities: [{}]),",
+                    quote(&g.id),
+                    entities.join(", ")
+                );
+            }
+            let _ = writeln!(out, "    ],");
+        }
         let _ = writeln!(out, ")");
         out
     }

@@ -136,6 +136,10 @@ fn every_bad_file_has_its_message() {
             "orientation_not_point.ron:4:48: constraint \"o\": Orientation: field points: \"l\" is a line, not a point",
         ),
         (
+            "group_repeated.ron",
+            "group_repeated.ron:5:39: group \"g\": field entities: \"p\" is named twice",
+        ),
+        (
             "repeated_entity.ron",
             "repeated_entity.ron:4:48: constraint \"d\": fields a and b both name \"p\"",
         ),

@@ -64,6 +64,10 @@ pub struct PlanReport {
     /// `plan`), whose chosen realizations it places as rigid bodies; absent otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub children: Vec<usize>,
+    /// The groups the user declared (ids) whose entities this step is (a node of the core's
+    /// DR-plan); absent otherwise.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub groups: Vec<String>,
 }
 
 /// The paths of a core's homotopy (`gcs solve --all`) and what they ended at.
@@ -246,6 +250,7 @@ impl SolveReport {
                     failed: c.failed,
                 }),
                 children: p.children.clone(),
+                groups: p.groups.iter().map(|g| system.groups()[*g].id.clone()).collect(),
             })
             .collect();
         let shape = |x: &[f64]| -> Vec<Value> {

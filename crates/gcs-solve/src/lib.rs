@@ -256,6 +256,8 @@ pub struct PlanStep {
     /// For a node of the core's DR-plan ([`nodes`]) assembled from others: their steps, whose
     /// chosen realizations it places as rigid bodies (empty for every other step).
     pub children: Vec<usize>,
+    /// The groups the user declared ([`System::groups`], by index) that this step is.
+    pub groups: Vec<usize>,
 }
 
 /// Why a system was not solved.
@@ -862,6 +864,7 @@ pub fn solve(
             fixed: false,
             paths: None,
             children: node.children.clone(),
+            groups: node.groups.clone(),
         });
     }
     // With `all`, or when the user chooses among them: every real realization of a solved
@@ -1111,6 +1114,7 @@ pub fn solve(
             fixed: forced[k].is_some(),
             paths: None,
             children: Vec::new(),
+            groups: Vec::new(),
         });
     }
 

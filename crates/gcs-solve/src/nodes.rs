@@ -42,6 +42,8 @@ pub struct Node {
     pub constraints: Vec<ConstraintIdx>,
     /// Its children, as indices of earlier nodes (empty for a leaf).
     pub children: Vec<usize>,
+    /// The groups the user declared ([`System::groups`], by index) whose points it is.
+    pub groups: Vec<usize>,
 }
 
 impl Node {
@@ -68,7 +70,12 @@ pub fn plan(system: &System, core: &[ConstraintIdx]) -> Vec<Node> {
     entities.dedup();
     let mut constraints = core.to_vec();
     constraints.sort();
-    let whole = vec![Node { entities: entities.clone(), constraints, children: Vec::new() }];
+    let whole = vec![Node {
+        entities: entities.clone(),
+        constraints,
+        children: Vec::new(),
+        groups: groups_of(system, &entities),
+    }];
     let Some(bars) = framework(system, core, &entities) else { return whole };
     let n = entities.len();
     if n > MAX_POINTS || bars.len() + 3 != 2 * n {
@@ -78,18 +85,36 @@ pub fn plan(system: &System, core: &[ConstraintIdx]) -> Vec<Node> {
     if gcs_decompose::pebble_game(n, &pairs).rank != bars.len() {
         return whole;
     }
+    // The groups of points of the core: each kept whole while it is a proper part of a node.
+    let groups: Vec<Vec<usize>> = (system.groups().iter())
+        .filter_map(|g| {
+            let mut vertices: Vec<usize> =
+                g.entities.iter().map(|e| entities.binary_search(e).ok()).collect::<Option<_>>()?;
+            vertices.sort_unstable();
+            (vertices.len() >= 3).then_some(vertices)
+        })
+        .collect();
     let mut nodes = Vec::new();
-    decompose((0..n).collect(), bars, &mut nodes);
+    decompose((0..n).collect(), bars, &groups, &mut nodes);
     nodes
         .into_iter()
         .map(|(vertices, mut constraints, children)| {
             constraints.sort();
-            Node {
-                entities: vertices.iter().map(|&v| entities[v]).collect(),
-                constraints,
-                children,
-            }
+            let entities: Vec<EntityIdx> = vertices.iter().map(|&v| entities[v]).collect();
+            let groups = groups_of(system, &entities);
+            Node { entities, constraints, children, groups }
         })
+        .collect()
+}
+
+/// The groups whose entities are exactly `entities` (ascending).
+fn groups_of(system: &System, entities: &[EntityIdx]) -> Vec<usize> {
+    (system.groups().iter().enumerate())
+        .filter(|(_, g)| {
+            g.entities.len() == entities.len()
+                && g.entities.iter().all(|e| entities.binary_search(e).is_ok())
+        })
+        .map(|(k, _)| k)
         .collect()
 }
 
@@ -129,16 +154,35 @@ fn framework(
 type Raw = (Vec<usize>, Vec<ConstraintIdx>, Vec<usize>);
 
 /// Decomposes the rigid framework on `vertices` (ascending) with `bars`, pushing its nodes
-/// (children first); returns its own index.
+/// (children first); returns its own index. A group (ascending vertices) that is a proper rigid
+/// part of the framework is kept whole: no distance inside it is the one left out, so it lies
+/// in one rigid body of every split, each smaller than the last, until it is one.
 fn decompose(
     vertices: Vec<usize>,
     bars: Vec<(usize, usize, ConstraintIdx)>,
+    groups: &[Vec<usize>],
     out: &mut Vec<Raw>,
 ) -> usize {
     let local = |v: usize| vertices.binary_search(&v).unwrap_or(usize::MAX);
+    let inside = |group: &[usize], b: &(usize, usize, ConstraintIdx)| {
+        group.binary_search(&b.0).is_ok() && group.binary_search(&b.1).is_ok()
+    };
+    let kept: Vec<&Vec<usize>> = (groups.iter())
+        .filter(|g| g.len() < vertices.len() && g.iter().all(|v| vertices.binary_search(v).is_ok()))
+        .filter(|g| {
+            let own: Vec<(usize, usize)> = (bars.iter())
+                .filter(|b| inside(g, b))
+                .map(|b| (g.binary_search(&b.0).unwrap_or(0), g.binary_search(&b.1).unwrap_or(0)))
+                .collect();
+            gcs_decompose::pebble_game(g.len(), &own).rank + 3 == 2 * g.len()
+        })
+        .collect();
     let mut best: Option<(usize, Vec<Vec<usize>>)> = None;
     if vertices.len() > 3 {
         for skip in 0..bars.len() {
+            if kept.iter().any(|g| inside(g, &bars[skip])) {
+                continue;
+            }
             let rest: Vec<(usize, usize)> = (bars.iter().enumerate())
                 .filter(|(i, _)| *i != skip)
                 .map(|(_, b)| (local(b.0), local(b.1)))
@@ -181,7 +225,7 @@ fn decompose(
                 *b
             })
             .collect();
-        children.push(decompose(global, own, out));
+        children.push(decompose(global, own, groups, out));
     }
     let constraints = bars.iter().zip(&inside).filter(|(_, i)| !**i).map(|(b, _)| b.2).collect();
     out.push((vertices, constraints, children));

@@ -730,3 +730,49 @@ fn contradicting_orientations_are_reported() {
     assert_eq!(sol.turned.len(), 1, "{:?}", sol.turned);
     assert!(distances_hold(&s, &sol.x), "the rest is solved");
 }
+
+/// A group the user declares is a node of the core's DR-plan when it is rigid: in a chain of
+/// three K3,3 (blocks A, B, C), the plan splits off one end; declaring either A ∪ B or B ∪ C
+/// makes that pair the node, the rest following, and the solve is the same.
+#[test]
+fn a_declared_rigid_group_is_a_node_of_the_plan() {
+    let chain = gcs_model::generate::k33_chain(3, 1);
+    let one = SolveOptions { all: Some(1), ..SolveOptions::default() };
+    let plain = solve_with(&chain, &one);
+    let points =
+        |range: std::ops::Range<usize>| -> Vec<String> { range.map(|i| format!("p{i}")).collect() };
+    // Without a group, one of the two pairs is a node and the other is not.
+    let is = |p: &gcs_solve::PlanStep, range: std::ops::Range<usize>| {
+        let mut ids: Vec<String> = p.entities.iter().map(|e| chain.entity(*e).id.clone()).collect();
+        ids.sort();
+        let mut want = points(range);
+        want.sort();
+        ids == want
+    };
+    let pairs = plain.plan.iter().filter(|p| is(p, 0..12) || is(p, 6..18)).count();
+    assert_eq!(pairs, 1, "{:?}", plain.plan);
+    for (name, range) in [("AB", 0..12), ("BC", 6..18)] {
+        let mut b = gcs_model::SystemBuilder::from_system(chain.clone());
+        let ids = points(range.clone());
+        b.group(name, &ids.iter().map(String::as_str).collect::<Vec<_>>()).unwrap();
+        let s = b.build();
+        let sol = solve_with(&s, &one);
+        assert_eq!(sol.status, Status::Solved);
+        let node = sol.plan.iter().find(|p| p.groups == vec![0]).expect("the group is a node");
+        let mut entities: Vec<String> =
+            node.entities.iter().map(|e| s.entity(*e).id.clone()).collect();
+        entities.sort();
+        let mut want = ids.clone();
+        want.sort();
+        assert_eq!(entities, want, "{name}");
+        assert_eq!(node.children.len(), 2, "{name}: two K3,3 assembled");
+        assert!(sol.x.iter().zip(&plain.x).all(|(a, b)| (a - b).abs() < 1e-9), "{name}");
+    }
+    // A group that is not rigid (A with one point of B) changes nothing.
+    let mut b = gcs_model::SystemBuilder::from_system(chain.clone());
+    let ids = points(0..7);
+    b.group("loose", &ids.iter().map(String::as_str).collect::<Vec<_>>()).unwrap();
+    let sol = solve_with(&b.build(), &one);
+    assert!(sol.plan.iter().all(|p| p.groups.is_empty()));
+    assert_eq!(sol.plan.len(), plain.plan.len());
+}
