@@ -95,6 +95,12 @@ fn one(file: &str, model: Result<batch::Model, String>, settings: &Settings) -> 
             std::fs::write(&path, gcs_report::picture::analysis_svg(&system, &report))
         });
         written.map_err(|e| format!("{at}: cannot write {}: {e}", batch::display(&path)))?;
+        // With --decompose: the W-decomposition as a tree beside it.
+        if let Some(trees) = &analyzed.analysis.decomposition {
+            let path = dir.join(format!("{}.plan.svg", batch::file_name(&name)));
+            std::fs::write(&path, gcs_report::picture::plan_svg(&system, trees))
+                .map_err(|e| format!("{at}: cannot write {}: {e}", batch::display(&path)))?;
+        }
     }
     let report = match settings.format {
         Format::Json => analyzed.report(&system, file, import).to_json(),

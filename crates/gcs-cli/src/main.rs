@@ -101,7 +101,8 @@ enum Command {
         /// Draw each model as SVG to DIR/<file path without extension>.svg (a CAD file's
         /// sketches to DIR/<file path without extension>/<sketch>.svg): the sketch, each rigid cluster in its
         /// own colour, redundant constraints in orange (red when conflicting) and constraints
-        /// dependent only at this drawing in magenta, with what they depend on as tooltips.
+        /// dependent only at this drawing in magenta, with what they depend on as tooltips;
+        /// with --decompose, the W-decomposition as a tree beside it (<...>.plan.svg).
         #[arg(long, value_name = "DIR")]
         svg: Option<PathBuf>,
         /// Files analysed at once, on that many threads (default: the cores of this machine).

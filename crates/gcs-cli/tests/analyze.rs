@@ -572,5 +572,16 @@ fn pictures_of_the_analysis() {
     let inside = copy.with_extension("svg");
     let relative = inside.to_str().unwrap().trim_start_matches('/');
     assert!(read(relative).contains("kite: over-constrained"));
+    assert!(!out.join("data/paper/kite.plan.svg").exists(), "a plan only with --decompose");
+    // With --decompose: the W-decomposition as a tree beside the picture — two K3,3 under
+    // their union, each box with its entities.
+    let (code, _, err) =
+        gcs(&["analyze", "--decompose", "--svg", out.to_str().unwrap(), "data/paper/two_k33.ron"]);
+    assert_eq!(code, 0, "{err}");
+    let plan = read("data/paper/two_k33.plan.svg");
+    assert_eq!(plan.matches("<rect").count(), 3, "{plan}");
+    assert_eq!(plan.matches("(leaf)").count(), 2, "{plan}");
+    assert!(plan.contains("<title>6 entities: a1, a2, a3, b1, b2, b3</title>"), "{plan}");
+    assert!(plan.contains("<title>12 entities: a1"), "{plan}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -436,3 +436,119 @@ fn segment(x1: f64, y1: f64, x2: f64, y2: f64, colour: &str, width: f64) -> Line
         .set("stroke", colour)
         .set("stroke-width", width)
 }
+
+/// The W-decomposition (`--decompose`) drawn as a tree, the SVG beside `--dot`'s Graphviz: a
+/// box per rigid subsystem — its entities (points and curves; segments by their points), how
+/// many constraints, the whole list as a tooltip —, leaves in light blue, each subsystem over
+/// the subsystems it decomposes into; several trees (one per component) side by side.
+pub fn plan_svg(system: &System, trees: &[gcs_analysis::DecompositionNode]) -> String {
+    const W: f64 = 190.0;
+    const H: f64 = 64.0;
+    const GAP_X: f64 = 20.0;
+    const GAP_Y: f64 = 46.0;
+    const FONT: f64 = 11.0;
+    /// Lays `node` out: its leaves get the next slots; returns its centre's slot.
+    fn place(
+        node: &gcs_analysis::DecompositionNode,
+        depth: usize,
+        next: &mut f64,
+        out: &mut Vec<(f64, usize, Option<usize>, usize)>,
+        parent: Option<usize>,
+    ) -> f64 {
+        let me = out.len();
+        out.push((0.0, depth, parent, me));
+        let x = if node.children.is_empty() {
+            *next += 1.0;
+            *next - 1.0
+        } else {
+            let xs: Vec<f64> =
+                node.children.iter().map(|c| place(c, depth + 1, next, out, Some(me))).collect();
+            xs.iter().sum::<f64>() / xs.len() as f64
+        };
+        out[me].0 = x;
+        x
+    }
+    // Breadth of the layout: (slot, depth, parent, index) per node, in preorder.
+    let mut laid = Vec::new();
+    let mut next = 0.0;
+    for t in trees {
+        place(t, 0, &mut next, &mut laid, None);
+    }
+    let all: Vec<&gcs_analysis::DecompositionNode> = {
+        // (The preorder walk again, by reference: the same order as `laid`.)
+        fn walk<'a>(
+            n: &'a gcs_analysis::DecompositionNode,
+            out: &mut Vec<&'a gcs_analysis::DecompositionNode>,
+        ) {
+            out.push(n);
+            for c in &n.children {
+                walk(c, out);
+            }
+        }
+        let mut v = Vec::new();
+        for t in trees {
+            walk(t, &mut v);
+        }
+        v
+    };
+    let depth = laid.iter().map(|l| l.1).max().unwrap_or(0);
+    let width = (next.max(1.0)) * (W + GAP_X) + GAP_X;
+    let height = (depth + 1) as f64 * (H + GAP_Y) + GAP_Y;
+    let corner = |slot: f64, d: usize| (GAP_X + slot * (W + GAP_X), GAP_Y + d as f64 * (H + GAP_Y));
+    let mut edges = Group::new().set("stroke", "#888").set("stroke-width", 1.2);
+    let mut boxes = Group::new().set("font-family", "sans-serif").set("font-size", FONT);
+    for (k, (slot, d, parent, _)) in laid.iter().enumerate() {
+        let (x, y) = corner(*slot, *d);
+        if let Some(p) = parent {
+            let (px, py) = corner(laid[*p].0, laid[*p].1);
+            edges = edges.add(segment(px + W / 2.0, py + H, x + W / 2.0, y, "#888", 1.2));
+        }
+        let node = all[k];
+        let ids: Vec<&str> = (node.entities.iter())
+            .filter(|e| system.segment_points(**e).is_none())
+            .map(|e| system.entity(*e).id.as_str())
+            .collect();
+        let mut lines: Vec<String> = ids.chunks(6).map(|c| c.join(" ")).collect();
+        if lines.len() > 3 {
+            lines.truncate(3);
+            lines[2].push_str(" …");
+        }
+        lines.push(format!(
+            "{} constraint{}{}",
+            node.constraints.len(),
+            if node.constraints.len() == 1 { "" } else { "s" },
+            if node.children.is_empty() { " (leaf)" } else { "" }
+        ));
+        let leaf = node.children.is_empty();
+        let mut g =
+            Group::new().add(Title::new(format!("{} entities: {}", ids.len(), ids.join(", "))));
+        g = g.add(
+            svg::node::element::Rectangle::new()
+                .set("x", x)
+                .set("y", y)
+                .set("width", W)
+                .set("height", H)
+                .set("rx", 6)
+                .set("fill", if leaf { "#e8f1fa" } else { "#ffffff" })
+                .set("stroke", PALETTE[0])
+                .set("stroke-width", if leaf { 1.0 } else { 2.2 }),
+        );
+        for (i, l) in lines.iter().enumerate() {
+            g = g.add(
+                Text::new(l.as_str())
+                    .set("x", x + 6.0)
+                    .set("y", y + 4.0 + (i as f64 + 1.0) * 1.25 * FONT)
+                    .set("fill", "#222"),
+            );
+        }
+        boxes = boxes.add(g);
+    }
+    Document::new()
+        .set("viewBox", (0.0, 0.0, width, height))
+        .set("width", width.round())
+        .set("height", height.round())
+        .add(Title::new(format!("W-decomposition of {}", system.name())))
+        .add(edges)
+        .add(boxes)
+        .to_string()
+}
