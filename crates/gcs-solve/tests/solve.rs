@@ -408,6 +408,31 @@ fn a_flexible_chain_lists_its_realizations_given_its_free_points() {
     assert_eq!((few.solutions.unwrap().len(), few.truncated), (10, true));
 }
 
+/// A rigid chain of 8 triangles, each on an edge of the one before (a triangulated strip of 10
+/// points): 8 closed-form steps of 2 candidates each — every flip realizable, since each new
+/// triangle's base is itself a distance — so exactly 2^8 realizations, all distinct.
+#[test]
+fn a_chain_of_eight_triangles_has_two_to_the_eight_realizations() {
+    let s = gcs_model::generate::strip(5, 2);
+    assert_eq!(s.constraints().len(), 2 * 10 - 3);
+    let sol = solve_with(&s, &SolveOptions { all: Some(5000), ..SolveOptions::default() });
+    assert_eq!(sol.status, Status::Solved);
+    let steps: Vec<_> =
+        sol.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).collect();
+    assert_eq!(steps.len(), 8);
+    assert!(steps.iter().all(|p| p.candidates == 2 && p.complete));
+    let all = sol.solutions.unwrap();
+    assert_eq!((all.len(), sol.truncated), (256, false));
+    let choices = sol.solution_choices.unwrap();
+    let mut distinct = choices.clone();
+    distinct.sort();
+    distinct.dedup();
+    assert_eq!(distinct.len(), 256, "every combination of the 8 choices once");
+    for (i, x) in all.iter().enumerate() {
+        assert!(distances_hold(&s, x), "realization {i}");
+    }
+}
+
 /// The small counts: a triangle has 2 realizations (its apex on either side of its
 /// base); one dimensioned 10, 10, 50 has none, and says so with every step complete.
 #[test]
