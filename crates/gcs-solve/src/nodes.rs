@@ -258,8 +258,11 @@ pub(crate) struct Enumerator<'a> {
     pub max_paths: usize,
     /// Homotopies left to run.
     pub budget: std::cell::Cell<usize>,
-    /// The leaves' candidates, once computed.
-    leaves: std::cell::RefCell<std::collections::HashMap<usize, Candidates>>,
+    /// Each node's candidates, once computed for its children's choices (the choices of the
+    /// nodes of its subtree below it, which come just before it in the plan).
+    known: std::cell::RefCell<std::collections::HashMap<(usize, Choices), Candidates>>,
+    /// The first node of each node's subtree.
+    first: Vec<usize>,
     /// The orientation conditions on the core's points: a node's candidates are those where
     /// each condition on its points holds.
     pub orientations: Vec<&'a gcs_model::Orientation>,
@@ -282,7 +285,11 @@ impl<'a> Enumerator<'a> {
         max_paths: usize,
     ) -> Self {
         let budget = std::cell::Cell::new(MAX_ASSEMBLIES);
-        let leaves = Default::default();
+        let known = Default::default();
+        let mut first: Vec<usize> = (0..nodes.len()).collect();
+        for (k, node) in nodes.iter().enumerate() {
+            first[k] = node.children.iter().map(|&c| first[c]).min().unwrap_or(k).min(k);
+        }
         Enumerator {
             system,
             layout,
@@ -292,7 +299,8 @@ impl<'a> Enumerator<'a> {
             scale,
             max_paths,
             budget,
-            leaves,
+            known,
+            first,
             orientations: Vec::new(),
         }
     }
@@ -406,11 +414,7 @@ impl<'a> Enumerator<'a> {
             let children: Vec<&[f64]> =
                 node.children.iter().map(|&c| configs[c].as_slice()).collect();
             let own = node.children.iter().all(|&c| drawn[c]);
-            let candidates = if node.children.is_empty() {
-                self.leaf(k)
-            } else {
-                self.candidates(k, &children, own)
-            };
+            let candidates = self.known(k, &picks[self.first[k]..k], &children, own);
             let pick = forced.get(k).copied().flatten().unwrap_or(0);
             let Some(config) = candidates.list.get(pick) else {
                 let why = match candidates.list.len() {
@@ -474,11 +478,7 @@ impl<'a> Enumerator<'a> {
         let node = &self.nodes[k];
         let Some(&child) = node.children.get(i) else {
             let children: Vec<&[f64]> = configs.iter().map(Vec::as_slice).collect();
-            let candidates = if node.children.is_empty() {
-                self.leaf(k)
-            } else {
-                self.candidates(k, &children, own)
-            };
+            let candidates = self.known(k, &choices[self.first[k]..k], &children, own);
             for (j, config) in candidates.list.iter().enumerate() {
                 if forced.get(k).copied().flatten().is_some_and(|f| f != j) {
                     continue;
@@ -500,13 +500,15 @@ impl<'a> Enumerator<'a> {
         })
     }
 
-    /// A leaf's candidates, computed once.
-    fn leaf(&self, k: usize) -> Candidates {
-        if let Some(c) = self.leaves.borrow().get(&k) {
+    /// [`Enumerator::candidates`] of node `k` with the nodes below it at `below` (their
+    /// choices) and its children at `children`, computed once.
+    fn known(&self, k: usize, below: &[usize], children: &[&[f64]], own: bool) -> Candidates {
+        let key = (k, below.to_vec());
+        if let Some(c) = self.known.borrow().get(&key) {
             return c.clone();
         }
-        let c = self.candidates(k, &[], true);
-        self.leaves.borrow_mut().insert(k, c.clone());
+        let c = self.candidates(k, children, own);
+        self.known.borrow_mut().insert(key, c.clone());
         c
     }
 }
