@@ -107,6 +107,7 @@ pub fn navigate_page(
                 "children": p.children,
                 "paths": p.paths.map(|c| json!({
                     "tracked": c.paths, "finite": c.finite, "real": c.real, "failed": c.failed,
+                    "singular": c.singular,
                 })),
                 "complete": p.complete,
             })

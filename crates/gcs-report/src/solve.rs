@@ -79,9 +79,16 @@ pub struct PathsReport {
     pub finite: usize,
     /// Real ones among them: the core's realizations (`candidates`).
     pub real: usize,
-    /// Paths that ended neither at a nonsingular solution nor at infinity (`complete` is
-    /// then false).
+    /// Paths that ended neither at a solution nor at infinity (`complete` is then false).
     pub failed: usize,
+    /// Paths the Cauchy endgame took to a singular solution (decided: no isolated nonsingular
+    /// solution there). Absent when none.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub singular: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// One model's solve report, in the order of its fields in the JSON line.
@@ -248,6 +255,7 @@ impl SolveReport {
                     finite: c.finite,
                     real: c.real,
                     failed: c.failed,
+                    singular: c.singular,
                 }),
                 children: p.children.clone(),
                 groups: p.groups.iter().map(|g| system.groups()[*g].id.clone()).collect(),

@@ -34,7 +34,9 @@ pub struct PathCounts {
     pub finite: usize,
     /// Real ones among them (each a realization).
     pub real: usize,
-    /// Paths that ended neither at a nonsingular solution nor at infinity.
+    /// Paths that ended at a singular solution (the Cauchy endgame's).
+    pub singular: usize,
+    /// Paths that ended neither at a solution nor at infinity.
     pub failed: usize,
 }
 
@@ -472,6 +474,7 @@ fn solve_param(
         paths: ends.paths,
         finite: ends.solutions.len(),
         real: found.len(),
+        singular: ends.singular,
         failed: ends.failed,
     };
     Some((counts, found.into_iter().map(|f| f.1).collect()))

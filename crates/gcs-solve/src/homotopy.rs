@@ -22,9 +22,13 @@
 //!   failure. A path whose step underflows before `t = 1` ends there (near a singular end).
 //! - At `t = 1` (or where a path stopped), an end with `z₀` negligible is at infinity; any
 //!   other end is refined by Newton on `F` itself, and counts as a solution when Newton
-//!   converges there with a well-conditioned Jacobian. Ends that are neither (singular
-//!   solutions, paths lost) are counted as failed: the caller reports the solution set as
-//!   incomplete.
+//!   converges there with a well-conditioned Jacobian. A path that is neither goes to the
+//!   Cauchy endgame: from where it was at `1 − t = 10⁻²` it is tracked around the circle
+//!   `|1 − t| = 10⁻²` until it closes (its cycle number, at most 8 turns), and its end is the
+//!   mean over those turns (Cauchy's integral formula) — at infinity, a nonsingular solution
+//!   Newton confirms, or a singular solution (the path is decided: singular ends are no
+//!   isolated nonsingular solution). Ends the endgame cannot decide (a loop that does not
+//!   close) are counted as failed: the caller reports the solution set as incomplete.
 //!
 //! All of this is floating point: the counts are numerical results, reported as such.
 
@@ -63,6 +67,9 @@ pub struct Ends {
     pub solutions: Vec<Vec<C>>,
     /// Paths that ended at infinity.
     pub at_infinity: usize,
+    /// Paths that ended at a finite singular solution (found by the Cauchy endgame): decided,
+    /// and no isolated nonsingular solution.
+    pub singular: usize,
     /// Paths that ended neither at a nonsingular solution nor at infinity (a singular
     /// solution, or a path lost).
     pub failed: usize,
@@ -77,9 +84,10 @@ impl Ends {
 }
 
 /// Solves `a·x = b` (dense, `n × n`, row-major) by Gaussian elimination with partial pivoting;
-/// `None` when a pivot vanishes. Also returns the smallest pivot magnitude over the largest, a
-/// cheap conditioning estimate.
-fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64)> {
+/// `None` when a pivot vanishes. Also returns the smallest pivot magnitude over the largest
+/// (the square root of that ratio), a cheap conditioning estimate, and the smallest pivot
+/// magnitude itself.
+fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64, f64)> {
     let (mut small, mut large) = (f64::INFINITY, 0.0f64);
     for k in 0..n {
         let p =
@@ -117,7 +125,7 @@ fn lu_solve(mut a: Vec<C>, mut b: Vec<C>, n: usize) -> Option<(Vec<C>, f64)> {
         }
         b[k] = s / a[k * n + k];
     }
-    Some((b, (small / large).sqrt()))
+    Some((b, (small / large).sqrt(), small.sqrt()))
 }
 
 fn norm(v: &[C]) -> f64 {
@@ -131,6 +139,9 @@ struct Track {
     ratio: f64,
     early: Option<(f64, f64)>,
     left: f64,
+    /// Where the path was when `1 − t` first fell below 1e-2 (`1 − t`, `z`): the Cauchy
+    /// endgame's start.
+    endgame: Option<(f64, Vec<C>)>,
 }
 
 impl Track {
@@ -167,7 +178,7 @@ fn hom_degree(h: &Homotopy<'_>, i: usize) -> i32 {
 
 impl Homotopy<'_> {
     /// `H(z, t)` (n values, then the chart's), `H_z` ((n+1)², row-major) and `H_t` (n+1).
-    fn eval(&self, z: &[C], t: f64) -> (Vec<C>, Vec<C>, Vec<C>) {
+    fn eval(&self, z: &[C], t: C) -> (Vec<C>, Vec<C>, Vec<C>) {
         let n = self.target.n;
         let m = n + 1;
         let z0 = z[0];
@@ -175,7 +186,7 @@ impl Homotopy<'_> {
         let (f, jf) = (self.target.eval)(&x);
         let (mut h, mut hz, mut ht) =
             (vec![C::new(0.0, 0.0); m], vec![C::new(0.0, 0.0); m * m], vec![C::new(0.0, 0.0); m]);
-        let (s, u) = (C::new(1.0 - t, 0.0) * self.gamma, C::new(t, 0.0));
+        let (s, u) = ((C::new(1.0, 0.0) - t) * self.gamma, t);
         for i in 0..n {
             let d = hom_degree(self, i);
             // Homogenised target: z₀^d F(z/z₀); ∂/∂z_j = z₀^{d−1} ∂F/∂x_j;
@@ -229,24 +240,24 @@ impl Homotopy<'_> {
     }
 
     /// `dz/dt` at `(z, t)`.
-    fn tangent(&self, z: &[C], t: f64) -> Option<Vec<C>> {
+    fn tangent(&self, z: &[C], t: C) -> Option<Vec<C>> {
         let m = self.target.n + 1;
         let (_, hz, ht) = self.eval(z, t);
         let rhs: Vec<C> = ht.iter().map(|v| -v).collect();
-        lu_solve(hz, rhs, m).map(|(d, _)| d)
+        lu_solve(hz, rhs, m).map(|(d, _, _)| d)
     }
 
     /// Newton at fixed `t` from `z`: the corrected point when it converges in at most three
     /// steps, each at most a quarter of the one before, the first small beside `z` (a larger
     /// correction may land on another path).
-    fn correct(&self, z: &[C], t: f64) -> Option<Vec<C>> {
+    fn correct(&self, z: &[C], t: C) -> Option<Vec<C>> {
         let m = self.target.n + 1;
         let mut z = z.to_vec();
         let size = norm(&z);
         let mut last = 0.05 * size;
         for _ in 0..3 {
             let (h, hz, _) = self.eval(&z, t);
-            let (dz, _) = lu_solve(hz, h, m)?;
+            let (dz, _, _) = lu_solve(hz, h, m)?;
             let step = norm(&dz);
             if !(step <= 0.25 * last) && last != 0.05 * size || !(step <= last) {
                 return None;
@@ -273,6 +284,7 @@ impl Homotopy<'_> {
         let mut h = max_step.min(0.02);
         let mut successes = 0;
         let mut early: Option<(f64, f64)> = None;
+        let mut endgame: Option<(f64, Vec<C>)> = None;
         let ratio = |z: &[C]| z[0].norm() / norm(z);
         for _ in 0..2_000 {
             let left = 1.0 - t;
@@ -280,7 +292,7 @@ impl Homotopy<'_> {
                 break;
             }
             let dt = h.min(0.5 * left);
-            match self.rk4(&z, t, dt).and_then(|p| self.correct(&p, t + dt)) {
+            match self.rk4(&z, t, dt).and_then(|p| self.correct(&p, C::new(t + dt, 0.0))) {
                 Some(next) if next.iter().all(|c| c.re.is_finite() && c.im.is_finite()) => {
                     z = next;
                     t += dt;
@@ -291,6 +303,7 @@ impl Homotopy<'_> {
                     }
                     if early.is_none() && 1.0 - t <= 1e-2 {
                         early = Some((1.0 - t, ratio(&z)));
+                        endgame = Some((1.0 - t, z.clone()));
                     }
                     // Clearly at infinity: z₀ negligible, or shrunk twenty-fold since
                     // `1 − t` fell below 1e-2 and already below 1e-3 of z.
@@ -311,17 +324,18 @@ impl Homotopy<'_> {
                 }
             }
         }
-        Track { ratio: ratio(&z), early, left: 1.0 - t, z }
+        Track { ratio: ratio(&z), early, left: 1.0 - t, z, endgame }
     }
 
     fn rk4(&self, z: &[C], t: f64, dt: f64) -> Option<Vec<C>> {
         let add = |z: &[C], k: &[C], s: f64| -> Vec<C> {
             z.iter().zip(k).map(|(a, b)| a + b * s).collect()
         };
-        let k1 = self.tangent(z, t)?;
-        let k2 = self.tangent(&add(z, &k1, dt / 2.0), t + dt / 2.0)?;
-        let k3 = self.tangent(&add(z, &k2, dt / 2.0), t + dt / 2.0)?;
-        let k4 = self.tangent(&add(z, &k3, dt), t + dt)?;
+        let at = |t: f64| C::new(t, 0.0);
+        let k1 = self.tangent(z, at(t))?;
+        let k2 = self.tangent(&add(z, &k1, dt / 2.0), at(t + dt / 2.0))?;
+        let k3 = self.tangent(&add(z, &k2, dt / 2.0), at(t + dt / 2.0))?;
+        let k4 = self.tangent(&add(z, &k3, dt), at(t + dt))?;
         Some(
             (0..z.len())
                 .map(|i| z[i] + (k1[i] + k2[i] * 2.0 + k3[i] * 2.0 + k4[i]) * (dt / 6.0))
@@ -329,6 +343,84 @@ impl Homotopy<'_> {
         )
     }
 }
+
+impl Homotopy<'_> {
+    /// The Cauchy endgame: from `z` at `1 − t = radius` (real), the path is tracked around
+    /// the circle `1 − t = radius·e^{iθ}` until it closes (after `c` turns, `c` at most
+    /// [`MAX_WINDING`]: the cycle number of its end); by Cauchy's integral formula the end at
+    /// `t = 1` is the mean of the path over those turns, sampled at equally spaced angles
+    /// (the trapezoidal rule, exponentially accurate on a periodic function). This finds the
+    /// end of a path to a singular solution, where the tracker cannot go. `None` when the
+    /// path does not close.
+    fn cauchy(&self, z: &[C], radius: f64) -> Option<Vec<C>> {
+        const SAMPLES: usize = 64;
+        let start = z.to_vec();
+        let mut z = start.clone();
+        let mut sum = vec![C::new(0.0, 0.0); z.len()];
+        let at = |theta: f64| C::new(1.0, 0.0) - C::new(0.0, theta).exp() * radius;
+        for turn in 1..=MAX_WINDING {
+            for k in 0..SAMPLES {
+                for (s, v) in sum.iter_mut().zip(&z) {
+                    *s += v;
+                }
+                let from = std::f64::consts::TAU * ((turn - 1) * SAMPLES + k) as f64 / SAMPLES as f64;
+                z = self.arc(&z, from, std::f64::consts::TAU / SAMPLES as f64, &at)?;
+            }
+            if same_within(&z, &start, 1e-6) {
+                let count = (turn * SAMPLES) as f64;
+                return Some(sum.iter().map(|s| s / count).collect());
+            }
+        }
+        None
+    }
+
+    /// Tracks from `z` at angle `from` along the circle to `from + step`, in substeps that
+    /// halve until each corrects.
+    fn arc(&self, z: &[C], from: f64, step: f64, at: &dyn Fn(f64) -> C) -> Option<Vec<C>> {
+        let mut z = z.to_vec();
+        let (mut theta, end) = (from, from + step);
+        let mut h = step;
+        while theta < end - 1e-15 {
+            let dt = h.min(end - theta);
+            // dz/dθ = dz/dt · dt/dθ, with dt/dθ = −i·radius·e^{iθ} = i·(t − 1).
+            let deriv = |z: &[C], theta: f64| -> Option<Vec<C>> {
+                let t = at(theta);
+                let dtd = C::new(0.0, 1.0) * (t - C::new(1.0, 0.0));
+                self.tangent(z, t).map(|d| d.iter().map(|v| v * dtd).collect())
+            };
+            let add = |z: &[C], k: &[C], s: f64| -> Vec<C> {
+                z.iter().zip(k).map(|(a, b)| a + b * s).collect()
+            };
+            let predicted = (|| {
+                let k1 = deriv(&z, theta)?;
+                let k2 = deriv(&add(&z, &k1, dt / 2.0), theta + dt / 2.0)?;
+                let k3 = deriv(&add(&z, &k2, dt / 2.0), theta + dt / 2.0)?;
+                let k4 = deriv(&add(&z, &k3, dt), theta + dt)?;
+                Some(
+                    (0..z.len())
+                        .map(|i| z[i] + (k1[i] + k2[i] * 2.0 + k3[i] * 2.0 + k4[i]) * (dt / 6.0))
+                        .collect::<Vec<C>>(),
+                )
+            })();
+            match predicted.and_then(|p| self.correct(&p, at(theta + dt))) {
+                Some(next) => {
+                    z = next;
+                    theta += dt;
+                }
+                None => {
+                    h /= 2.0;
+                    if h < step / 1024.0 {
+                        return None;
+                    }
+                }
+            }
+        }
+        Some(z)
+    }
+}
+
+/// The most turns the Cauchy endgame makes around a path's end (its cycle number).
+const MAX_WINDING: usize = 8;
 
 /// Newton on the target from `x`: the solution and whether it is nonsingular there — Newton
 /// converges quadratically to a nonsingular solution (a step below 1e-12 of the size within a
@@ -339,7 +431,7 @@ fn refine(target: &Target<'_>, x: &[C]) -> Option<(Vec<C>, bool)> {
     let mut converged = false;
     for _ in 0..12 {
         let (f, j) = (target.eval)(&x);
-        let (dx, _) = lu_solve(j, f, n)?;
+        let (dx, _, _) = lu_solve(j, f, n)?;
         for (a, d) in x.iter_mut().zip(&dx) {
             *a -= d;
         }
@@ -353,18 +445,24 @@ fn refine(target: &Target<'_>, x: &[C]) -> Option<(Vec<C>, bool)> {
     if !(norm(&f) <= 1e-9 * scale.powi(2)) {
         return None;
     }
-    let (_, conditioning) = lu_solve(j, f, n)?;
-    Some((x, converged && conditioning > 1e-10))
+    // The target is scaled to order 1: a pivot below 1e-7 is a vanishing one (a double root in
+    // one unknown has no other pivot to compare it with).
+    let (_, conditioning, smallest) = lu_solve(j, f, n)?;
+    Some((x, converged && conditioning > 1e-10 && smallest > 1e-7))
 }
 
 /// What a path ended at.
 enum End {
     Solution(Vec<C>),
+    /// A finite solution where the target's Jacobian is singular (found by the endgame): a
+    /// path decided, not one of the isolated nonsingular solutions.
+    Singular,
     Infinity,
     Failed,
 }
 
-fn end_of(target: &Target<'_>, track: &Track) -> End {
+fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> End {
+    let target = homotopy.target;
     if track.ratio <= 1e-10 {
         return End::Infinity;
     }
@@ -375,8 +473,32 @@ fn end_of(target: &Target<'_>, track: &Track) -> End {
         // any solution.)
         Some((y, true)) if same_within(&x, &y, 1e-4) => End::Solution(y),
         _ if track.at_infinity() => End::Infinity,
-        _ => End::Failed,
+        _ => match &track.endgame {
+            Some((radius, z)) => endgame(homotopy, z, *radius),
+            None => End::Failed,
+        },
     }
+}
+
+/// The end of a path the tracker could not decide, by the Cauchy endgame from where it was at
+/// `1 − t = radius` (then from a tenth of that, tracked there): at infinity when `z₀`
+/// vanishes there, a nonsingular solution when Newton on the target converges quadratically
+/// from it, a singular one when the target vanishes there; failed otherwise.
+fn endgame(homotopy: &Homotopy<'_>, z: &[C], radius: f64) -> End {
+    let target = homotopy.target;
+    let Some(e) = homotopy.cauchy(z, radius) else { return End::Failed };
+    let size = norm(&e);
+    if e[0].norm() <= 1e-8 * size {
+        return End::Infinity;
+    }
+    let x: Vec<C> = e[1..].iter().map(|v| v / e[0]).collect();
+    if let Some((y, true)) = refine(target, &x)
+        && same_within(&x, &y, 1e-4)
+    {
+        return End::Solution(y);
+    }
+    let (f, _) = (target.eval)(&x);
+    if norm(&f) <= 1e-6 * (1.0 + norm(&x)).powi(2) { End::Singular } else { End::Failed }
 }
 
 /// Whether two solutions are the same (relative to their size).
@@ -449,7 +571,7 @@ fn product_starts(factors: &[Vec<Vec<C>>], second: &[bool]) -> Option<Vec<Vec<C>
                 let k = vars.len();
                 let a: Vec<C> = rows.iter().flat_map(|c| vars.iter().map(|&j| c[1 + j])).collect();
                 let b: Vec<C> = rows.iter().map(|c| -c[0]).collect();
-                let (x, _) = lu_solve(a, b, k)?;
+                let (x, _, _) = lu_solve(a, b, k)?;
                 for (v, &j) in x.iter().zip(&vars) {
                     z[1 + j] = *v;
                 }
@@ -551,7 +673,7 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
     let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get).min(8);
     let share = starts.len().div_ceil(threads.max(1)).max(1);
     let first: Vec<End> = if threads <= 1 || starts.len() < 8 {
-        starts.iter().map(|z| end_of(target, &homotopy.track(z.clone(), 0.1))).collect()
+        starts.iter().map(|z| end_of(&homotopy, &homotopy.track(z.clone(), 0.1))).collect()
     } else {
         std::thread::scope(|scope| {
             let handles: Vec<_> = starts
@@ -561,7 +683,7 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
                     scope.spawn(move || {
                         chunk
                             .iter()
-                            .map(|z| end_of(target, &homotopy.track(z.clone(), 0.1)))
+                            .map(|z| end_of(homotopy, &homotopy.track(z.clone(), 0.1)))
                             .collect::<Vec<End>>()
                     })
                 })
@@ -578,7 +700,7 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         // solution ends one path): tracked again with smaller steps, else failed.
         let result = match result {
             End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
-                end_of(target, &homotopy.track(z.clone(), 0.01))
+                end_of(&homotopy, &homotopy.track(z.clone(), 0.01))
             }
             other => other,
         };
@@ -587,6 +709,7 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
                 ends.solutions.push(x);
             }
             End::Infinity => ends.at_infinity += 1,
+            End::Singular => ends.singular += 1,
             End::Solution(_) | End::Failed => ends.failed += 1,
         }
     }
@@ -653,14 +776,32 @@ mod tests {
         }
     }
 
-    /// A double root ends two paths: the count is not complete.
+    /// A double root ends two paths, where the tracker cannot go (the Jacobian vanishes):
+    /// the Cauchy endgame goes around it (cycle number 2) and decides both paths — a singular
+    /// solution, no nonsingular one missed. With a simple root beside it, that one is found.
     #[test]
-    fn a_double_root_makes_the_count_incomplete() {
+    fn the_endgame_decides_the_paths_to_a_double_root() {
         let eval = |x: &[C]| (vec![(x[0] - c(1.0)).powi(2)], vec![(x[0] - c(1.0)) * 2.0]);
         let t = Target { n: 1, degrees: vec![2], eval: &eval, groups: None };
-        // Both paths end at it: the second is reported failed.
         let ends = solve(&t, 3, MAX_PATHS).unwrap();
-        assert!(!ends.complete(), "{ends:?}");
+        assert_eq!((ends.singular, ends.solutions.len(), ends.failed), (2, 0, 0), "{ends:?}");
+        assert!(ends.complete());
+        // (x − 1)²(x + 2) = x³ − 3x + 2: the simple root −2 and the double root 1.
+        let eval = |x: &[C]| {
+            let v = x[0];
+            (vec![v * v * v - v * 3.0 + c(2.0)], vec![v * v * 3.0 - c(3.0)])
+        };
+        let t = Target { n: 1, degrees: vec![3], eval: &eval, groups: None };
+        let ends = solve(&t, 5, MAX_PATHS).unwrap();
+        assert_eq!((ends.singular, ends.solutions.len(), ends.failed), (2, 1, 0), "{ends:?}");
+        assert!((ends.solutions[0][0] + c(2.0)).norm() < 1e-9);
+        // And a system whose paths reach a double root in two unknowns: x² = 0, y = x + 1.
+        let eval = |x: &[C]| {
+            (vec![x[0] * x[0], x[1] - x[0] - c(1.0)], vec![x[0] * 2.0, c(0.0), -c(1.0), c(1.0)])
+        };
+        let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
+        let ends = solve(&t, 6, MAX_PATHS).unwrap();
+        assert_eq!((ends.singular, ends.failed), (2, 0), "{ends:?}");
     }
 
     /// Too many paths are refused.
