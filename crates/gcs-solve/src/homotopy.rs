@@ -363,7 +363,8 @@ impl Homotopy<'_> {
                 for (s, v) in sum.iter_mut().zip(&z) {
                     *s += v;
                 }
-                let from = std::f64::consts::TAU * ((turn - 1) * SAMPLES + k) as f64 / SAMPLES as f64;
+                let from =
+                    std::f64::consts::TAU * ((turn - 1) * SAMPLES + k) as f64 / SAMPLES as f64;
                 z = self.arc(&z, from, std::f64::consts::TAU / SAMPLES as f64, &at)?;
             }
             if same_within(&z, &start, 1e-6) {

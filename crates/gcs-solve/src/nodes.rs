@@ -263,6 +263,9 @@ pub(crate) struct Enumerator<'a> {
     known: std::cell::RefCell<std::collections::HashMap<(usize, Choices), Candidates>>,
     /// The first node of each node's subtree.
     first: Vec<usize>,
+    /// The core's wedges: three points `a, b, c` with distances `a–b` and `a–c` — whose turns
+    /// say the chirality of a candidate.
+    wedges: Vec<[EntityIdx; 3]>,
     /// The orientation conditions on the core's points: a node's candidates are those where
     /// each condition on its points holds.
     pub orientations: Vec<&'a gcs_model::Orientation>,
@@ -290,6 +293,27 @@ impl<'a> Enumerator<'a> {
         for (k, node) in nodes.iter().enumerate() {
             first[k] = node.children.iter().map(|&c| first[c]).min().unwrap_or(k).min(k);
         }
+        // The wedges of the core's distances.
+        let mut adjacent: std::collections::BTreeMap<EntityIdx, Vec<EntityIdx>> =
+            Default::default();
+        for node in nodes {
+            for &c in &node.constraints {
+                if let Some(gcs_model::Metric::DistancePointPoint(a, b)) =
+                    system.constraint(c).signature.metric()
+                {
+                    adjacent.entry(a).or_default().push(b);
+                    adjacent.entry(b).or_default().push(a);
+                }
+            }
+        }
+        let mut wedges = Vec::new();
+        for (&a, around) in &adjacent {
+            for (i, &b) in around.iter().enumerate() {
+                for &c in &around[i + 1..] {
+                    wedges.push([a, b, c]);
+                }
+            }
+        }
         Enumerator {
             system,
             layout,
@@ -301,6 +325,7 @@ impl<'a> Enumerator<'a> {
             budget,
             known,
             first,
+            wedges,
             orientations: Vec::new(),
         }
     }
@@ -387,6 +412,24 @@ impl<'a> Enumerator<'a> {
                         list.insert(0, self.x.to_vec());
                     }
                     complete &= near;
+                } else {
+                    // Autosolve by chirality (the ESM paper §3): the candidates whose turns
+                    // agree with the solved drawing's first, then by least displacement (the
+                    // order they come in).
+                    let wedges: Vec<&[EntityIdx; 3]> = (self.wedges.iter())
+                        .filter(|w| w.iter().all(|p| node.entities.binary_search(p).is_ok()))
+                        .collect();
+                    let turn = |y: &[f64], w: &[EntityIdx; 3]| {
+                        let at = |p: EntityIdx| {
+                            let c = self.layout.columns(p).start;
+                            [y[c], y[c + 1]]
+                        };
+                        crate::closed::orientation(at(w[0]), at(w[1]), at(w[2])) > 0.0
+                    };
+                    let drawn: Vec<bool> = wedges.iter().map(|w| turn(self.x, w)).collect();
+                    list.sort_by_cached_key(|y| {
+                        wedges.iter().zip(&drawn).filter(|(w, d)| turn(y, w) != **d).count()
+                    });
                 }
                 Candidates { counts: Some(counts), list, complete, drawn_first: own }
             }
