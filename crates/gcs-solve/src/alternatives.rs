@@ -125,10 +125,13 @@ pub(crate) fn realizations(
     };
     let equations_of: Vec<ConstraintIdx> =
         core.iter().copied().filter(|&c| Some(c) != gauge).collect();
-    solve_param(layout, equations, &equations_of, core, &param, x, max_paths, seed)
+    let (counts, found) =
+        solve_param(layout, equations, &equations_of, core, &param, x, max_paths, seed)?;
+    Some((counts, found.into_iter().map(|f| f.1).collect()))
 }
 
-/// Every real placement of rigid bodies and free points that satisfies `constraints`: a node
+/// Every real placement of rigid bodies and free points that satisfies `constraints` (each as
+/// its unknowns: [`place`] gives its positions): a node
 /// of the core's DR-plan ([`crate::nodes`]), its children as rigid bodies at the
 /// configurations given (`bodies`: each child's points and a configuration they are placed in),
 /// the points on no child free (`free`), the node's own constraints between them. The first
@@ -148,6 +151,52 @@ pub(crate) fn assemble(
     max_paths: usize,
     seed: u64,
 ) -> Option<(PathCounts, Vec<Vec<f64>>)> {
+    let param = placement(layout, bodies, free, x)?;
+    let (counts, found) =
+        solve_param(layout, equations, constraints, constraints, &param, x, max_paths, seed)?;
+    Some((counts, found.into_iter().map(|f| f.0).collect()))
+}
+
+/// The configuration of a placement [`assemble`] found (its unknowns `y`: per body after the
+/// first its rotation's cosine and sine and its translation, per free point its coordinates,
+/// in units of the node's size), the children at `bodies` and `x` elsewhere: positions
+/// computed on demand from the constant-size record of each child.
+pub(crate) fn place(
+    layout: &Layout,
+    bodies: &[(Vec<EntityIdx>, &[f64])],
+    free: &[EntityIdx],
+    x: &[f64],
+    y: &[f64],
+) -> Option<Vec<f64>> {
+    let param = placement(layout, bodies, free, x)?;
+    if y.len() != param.n {
+        return None;
+    }
+    let mut config = param.base.clone();
+    for (col, terms) in &param.map {
+        config[*col] = param.base[*col] + terms.iter().map(|(j, w)| y[*j] * w).sum::<f64>();
+    }
+    Some(config)
+}
+
+/// The unknowns of the placement where every child stays where it is (the identity rotation
+/// and no translation; free points where `x` has them).
+pub(crate) fn identity_placement(bodies: usize, free: usize) -> Vec<f64> {
+    let mut y = Vec::with_capacity(4 * bodies.saturating_sub(1) + 2 * free);
+    for _ in 1..bodies {
+        y.extend([1.0, 0.0, 0.0, 0.0]);
+    }
+    y.resize(y.len() + 2 * free, 0.0);
+    y
+}
+
+/// The parametrisation of [`assemble`].
+fn placement(
+    layout: &Layout,
+    bodies: &[(Vec<EntityIdx>, &[f64])],
+    free: &[EntityIdx],
+    x: &[f64],
+) -> Option<Param> {
     let (reference, moving) = bodies.split_first()?;
     let xy = |config: &[f64], p: EntityIdx| -> Option<[f64; 2]> {
         let cols = layout.columns(p);
@@ -229,8 +278,7 @@ pub(crate) fn assemble(
         owner.insert(p, ([x[cols.start], x[cols.start + 1]], [Vec::new(), Vec::new()]));
         n += 2;
     }
-    let param = Param { n, base, map, extra, paired: true, size };
-    solve_param(layout, equations, constraints, constraints, &param, x, max_paths, seed)
+    Some(Param { n, base, map, extra, paired: true, size })
 }
 
 /// An affine parametrisation of part of a configuration by `n` unknowns `y`: layout column
@@ -306,7 +354,7 @@ fn solve_param(
     x: &[f64],
     max_paths: usize,
     seed: u64,
-) -> Option<(PathCounts, Vec<Vec<f64>>)> {
+) -> Option<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>)> {
     let n = param.n;
     let size = param.size;
     if n == 0 || n > MAX_UNKNOWNS {
@@ -434,7 +482,7 @@ fn solve_param(
     let isotropic = target.groups.is_some();
     let ends = homotopy::solve(&target, seed, max_paths)?;
     // The real ones, back in the layout's columns, checked against every equation.
-    let mut found: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut found: Vec<(f64, (Vec<f64>, Vec<f64>))> = Vec::new();
     for s in &ends.solutions {
         let s = if isotropic { to_xy(s) } else { s.clone() };
         let magnitude = 1.0 + s.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
@@ -466,7 +514,7 @@ fn solve_param(
             });
         if holds {
             let distance = param.map.iter().map(|(c, _)| (y[*c] - x[*c]).powi(2)).sum::<f64>();
-            found.push((distance, y));
+            found.push((distance, (real, y)));
         }
     }
     found.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -237,8 +237,14 @@ fn decompose(
 pub(crate) struct Candidates {
     /// Its homotopy's paths, when it was enumerated.
     pub counts: Option<PathCounts>,
-    /// The configurations, whole (the solved configuration outside the node).
+    /// Each candidate's record (the ESM paper §3: a node's solution is stored as the
+    /// placements of its children, not as positions): for a leaf, its configuration, whole
+    /// (the solved configuration outside the leaf); for a node with children (`placed`), a
+    /// rotation and a translation per child after the first and the coordinates of its free
+    /// points ([`alternatives::place`] computes the positions, [`Enumerator::config`]).
     pub list: Vec<Vec<f64>>,
+    /// Whether `list` holds placements.
+    pub placed: bool,
     /// Whether `list` is every real solution (that the orientation conditions allow).
     pub complete: bool,
     /// Whether `list[0]` is the solved configuration (the drawing's candidate).
@@ -335,38 +341,83 @@ impl<'a> Enumerator<'a> {
     /// one of them, and comes first.
     pub(crate) fn candidates(&self, k: usize, children: &[&[f64]], own: bool) -> Candidates {
         let node = &self.nodes[k];
-        let mut candidates = self.unfiltered(k, children, own);
+        let (mut candidates, mut configs) = self.unfiltered(k, children, own);
         // The orientation conditions on the node's points prune its candidates.
         let on: Vec<&gcs_model::Orientation> = (self.orientations.iter().copied())
             .filter(|o| o.points.iter().all(|p| node.entities.contains(p)))
             .collect();
         if !on.is_empty() {
-            let before = candidates.list.len();
-            candidates
-                .list
-                .retain(|y| on.iter().all(|o| crate::orientation_holds(self.layout, y, o)));
-            if candidates.list.len() < before && candidates.drawn_first {
-                candidates.drawn_first = candidates.list.first().is_some_and(|y| y == self.x);
+            let keep: Vec<bool> = (configs.iter())
+                .map(|y| on.iter().all(|o| crate::orientation_holds(self.layout, y, o)))
+                .collect();
+            let mut i = 0;
+            candidates.list.retain(|_| (keep[i], i += 1).0);
+            let mut i = 0;
+            configs.retain(|_| (keep[i], i += 1).0);
+            if candidates.drawn_first {
+                candidates.drawn_first = configs.first().is_some_and(|y| y == self.x);
             }
         }
         candidates
     }
 
-    /// [`Enumerator::candidates`] before the orientation conditions.
-    fn unfiltered(&self, k: usize, children: &[&[f64]], own: bool) -> Candidates {
+    /// Node `k`'s children as rigid bodies at `children` (the largest first: the reference of
+    /// its assembly) and its free points.
+    fn bodies<'c>(
+        &self,
+        k: usize,
+        children: &[&'c [f64]],
+    ) -> (Vec<(Vec<EntityIdx>, &'c [f64])>, Vec<EntityIdx>) {
+        let node = &self.nodes[k];
+        let mut bodies: Vec<(Vec<EntityIdx>, &[f64])> = (node.children.iter())
+            .zip(children)
+            .map(|(&c, config)| (self.nodes[c].entities.clone(), *config))
+            .collect();
+        bodies.sort_by_key(|b| std::cmp::Reverse(b.0.len()));
+        let free: Vec<EntityIdx> = (node.entities.iter().copied())
+            .filter(|e| bodies.iter().all(|b| !b.0.contains(e)))
+            .collect();
+        (bodies, free)
+    }
+
+    /// The configuration of node `k`'s candidate `j` with its children at `children`: a
+    /// leaf's is stored; a node's is computed from its placement of its children.
+    pub(crate) fn config(
+        &self,
+        k: usize,
+        children: &[&[f64]],
+        candidates: &Candidates,
+        j: usize,
+    ) -> Option<Vec<f64>> {
+        let record = candidates.list.get(j)?;
+        if !candidates.placed {
+            return Some(record.clone());
+        }
+        let (bodies, free) = self.bodies(k, children);
+        alternatives::place(self.layout, &bodies, &free, self.x, record)
+    }
+
+    /// [`Enumerator::candidates`] before the orientation conditions, with each candidate's
+    /// configuration.
+    fn unfiltered(&self, k: usize, children: &[&[f64]], own: bool) -> (Candidates, Vec<Vec<f64>>) {
         let node = &self.nodes[k];
         let seed = 0x5eed ^ (k as u64).wrapping_mul(0x9E37_79B9);
+        let placed = !node.children.is_empty();
         if node.single_distance(self.system) && own {
-            return Candidates {
+            let c = Candidates {
                 counts: None,
                 list: vec![self.x.to_vec()],
+                placed: false,
                 complete: true,
                 drawn_first: true,
             };
+            return (c, vec![self.x.to_vec()]);
         }
-        let found = if self.budget.get() == 0 {
+        let (bodies, free) = self.bodies(k, children);
+        // Each candidate as (record, configuration).
+        let found: Option<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>)> = if self.budget.get() == 0 {
             None
-        } else if node.children.is_empty() {
+        } else if !placed {
             self.budget.set(self.budget.get() - 1);
             alternatives::realizations(
                 self.system,
@@ -377,17 +428,9 @@ impl<'a> Enumerator<'a> {
                 self.max_paths,
                 seed,
             )
+            .map(|(counts, list)| (counts, list.into_iter().map(|y| (y.clone(), y)).collect()))
         } else {
             self.budget.set(self.budget.get() - 1);
-            // The largest child is the reference.
-            let mut bodies: Vec<(Vec<EntityIdx>, &[f64])> = (node.children.iter())
-                .zip(children)
-                .map(|(&c, config)| (self.nodes[c].entities.clone(), *config))
-                .collect();
-            bodies.sort_by_key(|b| std::cmp::Reverse(b.0.len()));
-            let free: Vec<EntityIdx> = (node.entities.iter().copied())
-                .filter(|e| bodies.iter().all(|b| !b.0.contains(e)))
-                .collect();
             alternatives::assemble(
                 self.layout,
                 self.equations,
@@ -398,48 +441,60 @@ impl<'a> Enumerator<'a> {
                 self.max_paths,
                 seed,
             )
+            .map(|(counts, list)| {
+                let pairs = (list.into_iter())
+                    .filter_map(|y| {
+                        let config = alternatives::place(self.layout, &bodies, &free, self.x, &y)?;
+                        Some((y, config))
+                    })
+                    .collect();
+                (counts, pairs)
+            })
         };
-        match found {
-            Some((counts, mut list)) => {
-                let mut complete = counts.failed == 0;
-                if own {
-                    let near = list.first().is_some_and(|f| {
-                        f.iter().zip(self.x).all(|(a, b)| (a - b).abs() <= 1e-7 * self.scale)
-                    });
-                    if near {
-                        list[0] = self.x.to_vec();
-                    } else {
-                        list.insert(0, self.x.to_vec());
-                    }
-                    complete &= near;
-                } else {
-                    // Autosolve by chirality (the ESM paper §3): the candidates whose turns
-                    // agree with the solved drawing's first, then by least displacement (the
-                    // order they come in).
-                    let wedges: Vec<&[EntityIdx; 3]> = (self.wedges.iter())
-                        .filter(|w| w.iter().all(|p| node.entities.binary_search(p).is_ok()))
-                        .collect();
-                    let turn = |y: &[f64], w: &[EntityIdx; 3]| {
-                        let at = |p: EntityIdx| {
-                            let c = self.layout.columns(p).start;
-                            [y[c], y[c + 1]]
-                        };
-                        crate::closed::orientation(at(w[0]), at(w[1]), at(w[2])) > 0.0
-                    };
-                    let drawn: Vec<bool> = wedges.iter().map(|w| turn(self.x, w)).collect();
-                    list.sort_by_cached_key(|y| {
-                        wedges.iter().zip(&drawn).filter(|(w, d)| turn(y, w) != **d).count()
-                    });
-                }
-                Candidates { counts: Some(counts), list, complete, drawn_first: own }
+        // The drawing's candidate: the solved configuration (for a node, its children where
+        // they are).
+        let drawing = || -> (Vec<f64>, Vec<f64>) {
+            let record = if placed {
+                alternatives::identity_placement(bodies.len(), free.len())
+            } else {
+                self.x.to_vec()
+            };
+            (record, self.x.to_vec())
+        };
+        let (counts, mut pairs, mut complete) = match found {
+            Some((counts, pairs)) => (Some(counts), pairs, counts.failed == 0),
+            None => (None, Vec::new(), false),
+        };
+        if own {
+            let near = pairs.first().is_some_and(|(_, f)| {
+                f.iter().zip(self.x).all(|(a, b)| (a - b).abs() <= 1e-7 * self.scale)
+            });
+            if near {
+                pairs[0] = drawing();
+            } else {
+                pairs.insert(0, drawing());
             }
-            None => Candidates {
-                counts: None,
-                list: if own { vec![self.x.to_vec()] } else { Vec::new() },
-                complete: false,
-                drawn_first: own,
-            },
+            complete &= near;
+        } else {
+            // Autosolve by chirality (the ESM paper §3): the candidates whose turns agree with
+            // the solved drawing's first, then by least displacement (the order they come in).
+            let wedges: Vec<&[EntityIdx; 3]> = (self.wedges.iter())
+                .filter(|w| w.iter().all(|p| node.entities.binary_search(p).is_ok()))
+                .collect();
+            let turn = |y: &[f64], w: &[EntityIdx; 3]| {
+                let at = |p: EntityIdx| {
+                    let c = self.layout.columns(p).start;
+                    [y[c], y[c + 1]]
+                };
+                crate::closed::orientation(at(w[0]), at(w[1]), at(w[2])) > 0.0
+            };
+            let drawn: Vec<bool> = wedges.iter().map(|w| turn(self.x, w)).collect();
+            pairs.sort_by_cached_key(|(_, y)| {
+                wedges.iter().zip(&drawn).filter(|(w, d)| turn(y, w) != **d).count()
+            });
         }
+        let (list, configs): (Vec<Vec<f64>>, Vec<Vec<f64>>) = pairs.into_iter().unzip();
+        (Candidates { counts, list, placed, complete, drawn_first: own }, configs)
     }
 
     /// The configuration at the choices `forced` (per node; `None`: candidate 0), with each
@@ -459,14 +514,14 @@ impl<'a> Enumerator<'a> {
             let own = node.children.iter().all(|&c| drawn[c]);
             let candidates = self.known(k, &picks[self.first[k]..k], &children, own);
             let pick = forced.get(k).copied().flatten().unwrap_or(0);
-            let Some(config) = candidates.list.get(pick) else {
+            let Some(config) = self.config(k, &children, &candidates, pick) else {
                 let why = match candidates.list.len() {
                     0 => "it has no real candidate at the choices of its children".to_owned(),
                     m => format!("it has {m} real candidate(s), 0–{}", m - 1),
                 };
                 return Err((k, pick, why));
             };
-            configs.push(config.clone());
+            configs.push(config);
             drawn.push(candidates.drawn_first && pick == 0);
             all.push(candidates);
             picks.push(pick);
@@ -522,13 +577,14 @@ impl<'a> Enumerator<'a> {
         let Some(&child) = node.children.get(i) else {
             let children: Vec<&[f64]> = configs.iter().map(Vec::as_slice).collect();
             let candidates = self.known(k, &choices[self.first[k]..k], &children, own);
-            for (j, config) in candidates.list.iter().enumerate() {
+            for j in 0..candidates.list.len() {
                 if forced.get(k).copied().flatten().is_some_and(|f| f != j) {
                     continue;
                 }
+                let Some(config) = self.config(k, &children, &candidates, j) else { continue };
                 let mut c = choices.clone();
                 c[k] = j;
-                if !emit(config.clone(), c, candidates.drawn_first && j == 0) {
+                if !emit(config, c, candidates.drawn_first && j == 0) {
                     return false;
                 }
             }
@@ -682,6 +738,30 @@ mod tests {
         let (other, _, _) = e.choose(&[Some(1), None, Some(0)]).unwrap();
         assert!(holds(&s, &other));
         assert!(other.iter().zip(&x).any(|(a, b)| (a - b).abs() > 1e-3));
+        // Autosolve by chirality: with the first K3,3 at its second candidate, the assembly's
+        // candidates come ordered by how many wedges (two distances at a point) turn against
+        // the drawing, the fewest first. They are stored as placements of the two K3,3 (a
+        // rotation and a translation of the second), the positions computed from them.
+        let u = &found[0].list[1];
+        let v = &found[1].list[0];
+        let assembled = e.candidates(2, &[u, v], false);
+        assert!(assembled.placed && assembled.list.iter().all(|p| p.len() == 4));
+        let turn = |z: &[f64], w: &[EntityIdx; 3]| {
+            let at = |p: EntityIdx| {
+                let c = layout.columns(p).start;
+                [z[c], z[c + 1]]
+            };
+            crate::closed::orientation(at(w[0]), at(w[1]), at(w[2])) > 0.0
+        };
+        let wrong = |y: &[f64]| e.wedges.iter().filter(|w| turn(y, w) != turn(&x, w)).count();
+        let counts: Vec<usize> = (0..assembled.list.len())
+            .map(|j| wrong(&e.config(2, &[u, v], &assembled, j).unwrap()))
+            .collect();
+        assert!(counts.len() >= 2 && counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
+        assert!(
+            (0..assembled.list.len())
+                .all(|j| holds(&s, &e.config(2, &[u, v], &assembled, j).unwrap()))
+        );
         let k33 = framework(
             &points[..6],
             &edges[3..].iter().copied().filter(|e| e.1 < 6).collect::<Vec<_>>(),
