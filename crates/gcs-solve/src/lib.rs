@@ -1001,21 +1001,17 @@ pub fn solve(
             completes[d - 1].push(o);
         }
     }
+    // Step `k` placed at `x`, flipped or not.
+    let place_step = |k: usize, x: &[f64], flip: bool| {
+        let step = &construction.steps[k];
+        place(step, &layout, system, &equations, &drawings[k], x, (flip, forced[k]), &completes[k])
+    };
     loop {
         x.copy_from_slice(&core_x);
         let mut first_failure = None;
         let mut confidence = vec![f64::INFINITY; construction.steps.len()];
         for (k, step) in construction.steps.iter().enumerate() {
-            let placed = place(
-                step,
-                &layout,
-                system,
-                &equations,
-                &drawings[k],
-                &x,
-                (flips[k], forced[k]),
-                &completes[k],
-            );
+            let placed = place_step(k, &x, flips[k]);
             let col = layout.columns(step.point).start;
             (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
             if placed.candidates == 2 && forced[k].is_none() {
@@ -1058,16 +1054,7 @@ pub fn solve(
     // turn, they join its part.
     let mut tainted: std::collections::HashMap<EntityIdx, usize> = Default::default();
     for (k, step) in construction.steps.iter().enumerate() {
-        let placed = place(
-            step,
-            &layout,
-            system,
-            &equations,
-            &drawings[k],
-            &x,
-            (flips[k], forced[k]),
-            &completes[k],
-        );
+        let placed = place_step(k, &x, flips[k]);
         let col = layout.columns(step.point).start;
         (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
         if placed.chosen.is_none() {

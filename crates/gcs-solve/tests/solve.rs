@@ -576,17 +576,7 @@ fn the_core_realizations_come_from_homotopy_continuation() {
         [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7], [5.9, 1.3]];
     let edges =
         [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5), (6, 1), (6, 3)];
-    let mut text = String::from("System(dim: 2, entities: [");
-    for (i, p) in points.iter().enumerate() {
-        text += &format!("Point(id: \"p{i}\", at: [{}, {}]),", p[0], p[1]);
-    }
-    text += "], constraints: [";
-    for (a, b) in edges {
-        let d = (points[a][0] - points[b][0]).hypot(points[a][1] - points[b][1]);
-        text += &format!("Distance(id: \"d{a}{b}\", a: \"p{a}\", b: \"p{b}\", value: {d}),");
-    }
-    text += "])";
-    let s = model(&text);
+    let s = framework(&points, &edges, "");
     let sol = solve_with(&s, &SolveOptions { all: Some(1000), ..SolveOptions::default() });
     assert_eq!(sol.status, Status::Solved);
     // The prism's DR-plan: its two triangles, then their assembly (24 complex realizations
@@ -652,12 +642,18 @@ fn prism_with(extra: &str) -> System {
     let points: [[f64; 2]; 6] =
         [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7]];
     let edges = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)];
+    framework(&points, &edges, extra)
+}
+
+/// Points `p0…` drawn at `points`, a distance `d<a><b>` per edge at its drawn length, then
+/// `extra` (RON items) in the constraints list.
+fn framework(points: &[[f64; 2]], edges: &[(usize, usize)], extra: &str) -> System {
     let mut text = String::from("System(dim: 2, entities: [");
     for (i, p) in points.iter().enumerate() {
         text += &format!("Point(id: \"p{i}\", at: [{}, {}]),", p[0], p[1]);
     }
     text += "], constraints: [";
-    for (a, b) in edges {
+    for &(a, b) in edges {
         let d = (points[a][0] - points[b][0]).hypot(points[a][1] - points[b][1]);
         text += &format!("Distance(id: \"d{a}{b}\", a: \"p{a}\", b: \"p{b}\", value: {d}),");
     }
