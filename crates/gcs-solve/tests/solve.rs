@@ -292,6 +292,24 @@ fn every_realization_of_the_closed_form_steps_is_listed() {
     assert!(run(&s).solutions.is_none());
 }
 
+/// Two triangles sharing an edge (the kite without its diagonal): each apex on either side of
+/// the shared edge, 4 realizations, all distinct and satisfying every distance.
+#[test]
+fn two_triangles_sharing_an_edge_have_four_realizations() {
+    let s = framework(
+        &[[0.0, 0.0], [5.0, 0.5], [2.0, 3.0], [3.0, -2.5]],
+        &[(0, 1), (0, 2), (1, 2), (0, 3), (1, 3)],
+        "",
+    );
+    let sol = solve_with(&s, &SolveOptions { all: Some(64), ..SolveOptions::default() });
+    let all = sol.solutions.unwrap();
+    assert_eq!((all.len(), sol.truncated), (4, false));
+    for (i, x) in all.iter().enumerate() {
+        assert!(distances_hold(&s, x), "realization {i}");
+        assert!(all[..i].iter().all(|y| x.iter().zip(y).any(|(u, v)| (u - v).abs() > 1e-6)));
+    }
+}
+
 /// The kite of the witness paper: its redundant sixth distance prunes the realizations whose
 /// two triangles are folded against each other; two remain (one the mirror of the other).
 #[test]
