@@ -701,8 +701,14 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         // solution ends one path): tracked again with smaller steps, else failed.
         let result = match result {
             End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
-                end_of(&homotopy, &homotopy.track(z.clone(), 0.01))
+                match end_of(&homotopy, &homotopy.track(z.clone(), 0.01)) {
+                    End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
+                        end_of(&homotopy, &homotopy.track(z.clone(), 0.001))
+                    }
+                    other => other,
+                }
             }
+            End::Failed => end_of(&homotopy, &homotopy.track(z.clone(), 0.01)),
             other => other,
         };
         match result {
