@@ -842,6 +842,6 @@ pub fn failure_json(file: &str, message: &str) -> String {
 }
 
 /// Whether a count is zero (a field left out of the JSON then).
-fn is_zero(n: &usize) -> bool {
+pub(crate) fn is_zero(n: &usize) -> bool {
     *n == 0
 }

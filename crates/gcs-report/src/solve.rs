@@ -83,12 +83,8 @@ pub struct PathsReport {
     pub failed: usize,
     /// Paths the Cauchy endgame took to a singular solution (decided: no isolated nonsingular
     /// solution there). Absent when none.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::report::is_zero")]
     pub singular: usize,
-}
-
-fn is_zero(n: &usize) -> bool {
-    *n == 0
 }
 
 /// One model's solve report, in the order of its fields in the JSON line.
