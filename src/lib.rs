@@ -129,6 +129,11 @@ pub fn rebuild(system: &System, keep_sketch: impl Fn(EntityIdx) -> bool) -> Syst
                     at(*end),
                 )
             }
+            Geometry::BSpline { degree, poles, knots, weights, periodic } => {
+                let poles: Vec<&str> =
+                    poles.iter().map(|p| system.entity(*p).id.as_str()).collect();
+                b.bspline(id, *degree, &poles, knots.clone(), weights.clone(), *periodic)
+            }
         };
         r.unwrap_or_else(|err| panic!("{}: rebuilding entity {id}: {err}", system.name()));
     }

@@ -277,7 +277,8 @@ fn recognise(
                 }
             }
             EntityClass::Line => lines.push(e),
-            EntityClass::Plane | EntityClass::Circle | EntityClass::Sphere => {}
+            EntityClass::Plane | EntityClass::Circle | EntityClass::Sphere | EntityClass::Curve => {
+            }
         }
         // A segment's points take part too.
         for p in entity.geometry.parts() {

@@ -148,6 +148,11 @@ fn cut_out(
                 };
                 b.arc(&ent.id, center.clone(), radius.clone(), at(start), at(end)).map(|_| ())
             }
+            gcs_model::Geometry::BSpline { degree, poles, knots, weights, periodic } => {
+                let poles: Vec<&str> = poles.iter().map(|p| s.entity(*p).id.as_str()).collect();
+                b.bspline(&ent.id, *degree, &poles, knots.clone(), weights.clone(), *periodic)
+                    .map(|_| ())
+            }
         }
         .unwrap();
     }

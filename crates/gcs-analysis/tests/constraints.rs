@@ -275,6 +275,14 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                                 Some(on(-4, 3)),
                             )
                         }
+                        EntityKind::BSpline => {
+                            let poles: Vec<String> = (0..4).map(|j| format!("{id}p{j}")).collect();
+                            for (j, p) in poles.iter().enumerate() {
+                                b.point(p, Some(at(10 + j as i64))).unwrap();
+                            }
+                            let poles: Vec<&str> = poles.iter().map(String::as_str).collect();
+                            b.bspline(&id, 3, &poles, None, None, false)
+                        }
                     };
                     made.unwrap_or_else(|e| panic!("{e}"));
                     ids.push(id);

@@ -549,6 +549,17 @@ const CLAIMS: &[Claim] = &[
         redundant: &[],
         clusters: None,
     },
+    Claim {
+        file: "data/sketches/spline.ron",
+        unknowns: Some(14),
+        equations: Some(14),
+        rank: 14,
+        dof_absolute: 0,
+        trivial_motions: 0,
+        dof: 0,
+        redundant: &[],
+        clusters: None,
+    },
 ];
 
 /// The models whose header says: one cluster, every entity and every constraint.
@@ -566,6 +577,7 @@ const WHOLE: &[&str] = &[
     "data/sketches/rectangle_overdimensioned.ron",
     "data/sketches/ratios.ron",
     "data/sketches/slot.ron",
+    "data/sketches/spline.ron",
 ];
 
 type ClusterSet = BTreeSet<(Vec<String>, Option<Vec<String>>)>;

@@ -111,7 +111,7 @@ fn finish_clusters<F>(
     sub: &crate::rigid::Subsystem<F>,
     raw: Vec<crate::rigid::RawCluster>,
 ) -> Vec<Cluster> {
-    // Segments join the clusters holding both their points.
+    // Composite entities (segments, B-splines) join the clusters holding all their parts.
     let mut of_entity: std::collections::HashMap<EntityIdx, Vec<usize>> = Default::default();
     for (i, r) in raw.iter().enumerate() {
         for e in &r.entities {
@@ -121,13 +121,16 @@ fn finish_clusters<F>(
     let mut segments: Vec<Vec<EntityIdx>> = vec![Vec::new(); raw.len()];
     let mut lonely: Vec<EntityIdx> = Vec::new();
     for e in system.entity_indices() {
-        if let Some((a, b)) = system.segment_points(e) {
-            let (ca, cb) = (of_entity.get(&a), of_entity.get(&b));
-            let both: Vec<usize> = ca
+        if system.entity(e).kind().is_composite() {
+            let parts = system.entity(e).geometry.parts();
+            let both: Vec<usize> = (parts.first())
+                .and_then(|p| of_entity.get(p))
                 .into_iter()
                 .flatten()
                 .copied()
-                .filter(|c| cb.is_some_and(|l| l.contains(c)))
+                .filter(|c| {
+                    parts[1..].iter().all(|p| of_entity.get(p).is_some_and(|l| l.contains(c)))
+                })
                 .collect();
             if both.is_empty() {
                 lonely.push(e);

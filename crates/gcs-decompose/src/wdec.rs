@@ -149,9 +149,8 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let system = self.ctx.system;
         let mut entities = node.entities.clone();
         for e in system.entity_indices() {
-            if let Some((a, b)) = system.segment_points(e)
-                && node.entities.contains(&a)
-                && node.entities.contains(&b)
+            if system.entity(e).kind().is_composite()
+                && system.entity(e).geometry.parts().iter().all(|p| node.entities.contains(p))
             {
                 entities.push(e);
             }

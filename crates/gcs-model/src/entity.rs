@@ -36,6 +36,9 @@ pub enum EntityKind {
     /// A circular arc (2D): a circle of variable centre and radius with two points on it, its
     /// start and end, counter-clockwise from start to end.
     Arc,
+    /// A B-spline curve (NURBS when weighted), built on its control points (point entities);
+    /// its degree, knots and weights are constants, so it has no degree of freedom of its own.
+    BSpline,
 }
 
 /// How constraints see an entity: the roles of the constraint table (format §1). Several kinds
@@ -53,6 +56,9 @@ pub enum EntityClass {
     Circle,
     /// Sphere-like: a centre and a radius in space.
     Sphere,
+    /// A free-form curve (a B-spline). No constraint takes it whole yet: constraints reach its
+    /// control points, which are point entities.
+    Curve,
 }
 
 impl EntityClass {
@@ -60,14 +66,16 @@ impl EntityClass {
     pub fn is_round(self) -> bool {
         match self {
             EntityClass::Circle | EntityClass::Sphere => true,
-            EntityClass::Point | EntityClass::Line | EntityClass::Plane => false,
+            EntityClass::Point | EntityClass::Line | EntityClass::Plane | EntityClass::Curve => {
+                false
+            }
         }
     }
 }
 
 impl EntityKind {
     /// Every entity kind, in the order of the format's table.
-    pub const ALL: [EntityKind; 7] = [
+    pub const ALL: [EntityKind; 8] = [
         EntityKind::Point,
         EntityKind::Line,
         EntityKind::Segment,
@@ -75,6 +83,7 @@ impl EntityKind {
         EntityKind::Plane,
         EntityKind::Sphere,
         EntityKind::Arc,
+        EntityKind::BSpline,
     ];
 
     /// The variant name used in model files (`Point`, `Line`, …).
@@ -87,6 +96,7 @@ impl EntityKind {
             EntityKind::Plane => "Plane",
             EntityKind::Sphere => "Sphere",
             EntityKind::Arc => "Arc",
+            EntityKind::BSpline => "BSpline",
         }
     }
 
@@ -100,6 +110,7 @@ impl EntityKind {
             EntityKind::Plane => "plane",
             EntityKind::Sphere => "sphere",
             EntityKind::Arc => "arc",
+            EntityKind::BSpline => "B-spline",
         }
     }
 
@@ -107,7 +118,9 @@ impl EntityKind {
     /// spatial).
     pub fn exists_in(self, dim: Dim) -> bool {
         match self {
-            EntityKind::Point | EntityKind::Line | EntityKind::Segment => true,
+            EntityKind::Point | EntityKind::Line | EntityKind::Segment | EntityKind::BSpline => {
+                true
+            }
             EntityKind::Circle | EntityKind::Arc => dim == Dim::Two,
             EntityKind::Plane | EntityKind::Sphere => dim == Dim::Three,
         }
@@ -127,7 +140,7 @@ impl EntityKind {
                 Dim::Two => 2,
                 Dim::Three => 4,
             },
-            EntityKind::Segment => 0,
+            EntityKind::Segment | EntityKind::BSpline => 0,
             EntityKind::Circle | EntityKind::Plane | EntityKind::Arc => 3,
             EntityKind::Sphere => 4,
         }
@@ -141,14 +154,16 @@ impl EntityKind {
             EntityKind::Plane => EntityClass::Plane,
             EntityKind::Circle | EntityKind::Arc => EntityClass::Circle,
             EntityKind::Sphere => EntityClass::Sphere,
+            EntityKind::BSpline => EntityClass::Curve,
         }
     }
 
     /// Whether the kind is built on other entities and has no coordinates of its own
-    /// (a segment: the line through its two points). Constraints on it act on its parts.
+    /// (a segment: the line through its two points; a B-spline: the curve of its control
+    /// points). Constraints on it act on its parts.
     pub fn is_composite(self) -> bool {
         match self {
-            EntityKind::Segment => true,
+            EntityKind::Segment | EntityKind::BSpline => true,
             EntityKind::Point
             | EntityKind::Line
             | EntityKind::Circle
@@ -159,10 +174,12 @@ impl EntityKind {
     }
 
     /// The fields naming the entities a composite kind is built on, in order (a segment:
-    /// `from`, `to`); empty for the others.
+    /// `from`, `to`); empty for the others. A kind built on a list (a B-spline's `poles`) has
+    /// one field, which names every part.
     pub fn part_fields(self) -> &'static [&'static str] {
         match self {
             EntityKind::Segment => &["from", "to"],
+            EntityKind::BSpline => &["poles"],
             EntityKind::Point
             | EntityKind::Line
             | EntityKind::Circle
@@ -238,6 +255,22 @@ pub enum Geometry {
         /// The end point.
         end: EntityIdx,
     },
+    /// A B-spline curve (NURBS when weighted): the curve of its control points, which are
+    /// point entities; its degree, knots and weights are constants ([`crate::spline`]).
+    BSpline {
+        /// The degree (1 to [`crate::spline::MAX_DEGREE`]).
+        degree: u32,
+        /// The control points, in order.
+        poles: Vec<EntityIdx>,
+        /// The knot vector, flat with repetitions: `poles + degree + 1` knots for an open
+        /// spline, the `poles + 1` knots of one period for a periodic one. `None`: clamped
+        /// and uniform (open), uniform (periodic).
+        knots: Option<Vec<BigRational>>,
+        /// One positive weight per control point (`None`: all 1, a polynomial B-spline).
+        weights: Option<Vec<BigRational>>,
+        /// Closed and periodic (the control points wrap around).
+        periodic: bool,
+    },
 }
 
 impl Geometry {
@@ -251,6 +284,7 @@ impl Geometry {
             Geometry::Plane { .. } => EntityKind::Plane,
             Geometry::Sphere { .. } => EntityKind::Sphere,
             Geometry::Arc { .. } => EntityKind::Arc,
+            Geometry::BSpline { .. } => EntityKind::BSpline,
         }
     }
 
@@ -264,7 +298,8 @@ impl Geometry {
             Geometry::Point { .. }
             | Geometry::Line { .. }
             | Geometry::Segment { .. }
-            | Geometry::Plane { .. } => None,
+            | Geometry::Plane { .. }
+            | Geometry::BSpline { .. } => None,
         }
     }
 
@@ -273,6 +308,7 @@ impl Geometry {
     pub fn parts(&self) -> Vec<EntityIdx> {
         match self {
             Geometry::Segment { from, to } => vec![*from, *to],
+            Geometry::BSpline { poles, .. } => poles.clone(),
             Geometry::Point { .. }
             | Geometry::Line { .. }
             | Geometry::Circle { .. }
@@ -287,6 +323,11 @@ impl Geometry {
     pub(crate) fn with_parts(self, parts: &[EntityIdx]) -> Geometry {
         match (self, parts) {
             (Geometry::Segment { .. }, [from, to]) => Geometry::Segment { from: *from, to: *to },
+            (Geometry::BSpline { degree, poles, knots, weights, periodic }, parts)
+                if parts.len() == poles.len() =>
+            {
+                Geometry::BSpline { degree, poles: parts.to_vec(), knots, weights, periodic }
+            }
             (g, _) => g,
         }
     }
@@ -336,6 +377,21 @@ impl Geometry {
                 }
                 Ok(())
             }
+            Geometry::BSpline { poles, .. } => {
+                for (e, name) in poles.iter().zip(names) {
+                    let found = system.entity(*e).kind();
+                    if found != EntityKind::Point {
+                        return Err(degenerate(
+                            id,
+                            fields.first().copied().unwrap_or("poles"),
+                            &format!(
+                                "a B-spline's control points are points, \"{name}\" is a {found}"
+                            ),
+                        ));
+                    }
+                }
+                Ok(())
+            }
             Geometry::Point { .. }
             | Geometry::Line { .. }
             | Geometry::Circle { .. }
@@ -354,7 +410,7 @@ impl Geometry {
             Geometry::Circle { center, radius }
             | Geometry::Sphere { center, radius }
             | Geometry::Arc { center, radius, .. } => center.is_some() && radius.is_some(),
-            Geometry::Segment { .. } => false,
+            Geometry::Segment { .. } | Geometry::BSpline { .. } => false,
         }
     }
 
@@ -393,6 +449,14 @@ impl Geometry {
                 check_radius(id, radius)
             }
             Geometry::Segment { .. } => Ok(()),
+            Geometry::BSpline { degree, poles, knots, weights, periodic } => crate::spline::check(
+                *degree,
+                poles.len(),
+                knots.as_deref(),
+                weights.as_deref(),
+                *periodic,
+            )
+            .map_err(|(field, what)| degenerate(id, field, &what)),
         }
     }
 
@@ -441,6 +505,22 @@ impl Geometry {
                     if let Geometry::Point { at: Some(at) } = &system.entity(*p).geometry {
                         let _ = write!(s, ", {field}: {}", ron_coords(at));
                     }
+                }
+                s.push(')');
+                s
+            }
+            Geometry::BSpline { degree, poles, knots, weights, periodic } => {
+                let poles: Vec<String> = poles.iter().map(|p| quote(&name(*p))).collect();
+                let mut s =
+                    format!("BSpline(id: {id}, degree: {degree}, poles: [{}]", poles.join(", "));
+                if let Some(k) = knots {
+                    let _ = write!(s, ", knots: {}", ron_coords(k));
+                }
+                if let Some(w) = weights {
+                    let _ = write!(s, ", weights: {}", ron_coords(w));
+                }
+                if *periodic {
+                    s.push_str(", periodic: true");
                 }
                 s.push(')');
                 s
@@ -568,6 +648,17 @@ pub(crate) enum RawEntity {
         #[serde(default)]
         end: Option<Vec<Num>>,
     },
+    BSpline {
+        id: String,
+        degree: u32,
+        poles: Vec<String>,
+        #[serde(default)]
+        knots: Option<Vec<Num>>,
+        #[serde(default)]
+        weights: Option<Vec<Num>>,
+        #[serde(default)]
+        periodic: bool,
+    },
 }
 
 /// What a [`RawEntity`] becomes: its id, its sketch data, and the ids of the entities it is
@@ -637,6 +728,25 @@ impl RawEntity {
                     },
                     refs: Vec::new(),
                     owned_points: vec![start, end],
+                }
+            }
+            RawEntity::BSpline { id, degree, poles, knots, weights, periodic } => {
+                let list = |field: &'static str, v: &Option<Vec<Num>>| {
+                    v.as_ref()
+                        .map(|v| v.iter().map(|x| number("entity", id, field, x)).collect())
+                        .transpose()
+                };
+                ReadEntity {
+                    id,
+                    geometry: Geometry::BSpline {
+                        degree: *degree,
+                        poles: vec![placeholder; poles.len()],
+                        knots: list("knots", knots)?,
+                        weights: list("weights", weights)?,
+                        periodic: *periodic,
+                    },
+                    refs: poles.iter().map(|p| ("poles", p.as_str())).collect(),
+                    owned_points: Vec::new(),
                 }
             }
             RawEntity::Plane { id, at } => ReadEntity {

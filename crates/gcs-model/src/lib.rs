@@ -53,6 +53,7 @@ pub mod number;
 mod read;
 pub mod rng;
 pub mod signature;
+pub mod spline;
 pub mod system;
 mod write;
 

@@ -218,27 +218,29 @@ impl System {
 
     /// The two points of a segment, `None` for any other kind.
     pub fn segment_points(&self, idx: EntityIdx) -> Option<(EntityIdx, EntityIdx)> {
-        match self.entity(idx).geometry {
-            Geometry::Segment { from, to } => Some((from, to)),
+        match &self.entity(idx).geometry {
+            Geometry::Segment { from, to } => Some((*from, *to)),
             Geometry::Point { .. }
             | Geometry::Line { .. }
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
             | Geometry::Sphere { .. }
-            | Geometry::Arc { .. } => None,
+            | Geometry::Arc { .. }
+            | Geometry::BSpline { .. } => None,
         }
     }
 
     /// The start and end points of an arc, `None` for any other kind.
     pub fn arc_points(&self, idx: EntityIdx) -> Option<(EntityIdx, EntityIdx)> {
-        match self.entity(idx).geometry {
-            Geometry::Arc { start, end, .. } => Some((start, end)),
+        match &self.entity(idx).geometry {
+            Geometry::Arc { start, end, .. } => Some((*start, *end)),
             Geometry::Point { .. }
             | Geometry::Line { .. }
             | Geometry::Segment { .. }
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
-            | Geometry::Sphere { .. } => None,
+            | Geometry::Sphere { .. }
+            | Geometry::BSpline { .. } => None,
         }
     }
 
@@ -502,8 +504,8 @@ impl SystemBuilder {
         }
         geometry.check(id, self.system.dim)?;
         if kind.is_composite() {
-            let fields = kind.part_fields();
-            geometry.check_parts(id, fields, names, &self.system)?;
+            let fields: Vec<&'static str> = part_fields(kind, names.len());
+            geometry.check_parts(id, &fields, names, &self.system)?;
         }
         let idx = EntityIdx(self.system.entities.len() as u32);
         self.system.entities.push(Entity { id: id.to_owned(), geometry, position: None, owner });
@@ -544,7 +546,7 @@ impl SystemBuilder {
         if let Geometry::Arc { center, radius, .. } = geometry {
             return self.arc(id, center, radius, None, None);
         }
-        let fields = geometry.kind().part_fields();
+        let fields = part_fields(geometry.kind(), parts.len());
         let mut resolved = Vec::with_capacity(parts.len());
         for (field, part) in fields.iter().zip(parts) {
             resolved.push(self.resolve("entity", id, field, part)?);
@@ -555,6 +557,23 @@ impl SystemBuilder {
             geometry
         };
         self.push_entity(id, geometry, parts)
+    }
+
+    /// Adds a B-spline curve on existing control points (format §1; [`crate::spline`] says
+    /// what the knots and weights mean).
+    pub fn bspline(
+        &mut self,
+        id: &str,
+        degree: u32,
+        poles: &[&str],
+        knots: Option<Vec<BigRational>>,
+        weights: Option<Vec<BigRational>>,
+        periodic: bool,
+    ) -> Result<EntityIdx, ModelError> {
+        let none = EntityIdx(u32::MAX);
+        let geometry =
+            Geometry::BSpline { degree, poles: vec![none; poles.len()], knots, weights, periodic };
+        self.entity(id, geometry, poles)
     }
 
     /// Adds a point.
@@ -865,5 +884,17 @@ impl SystemBuilder {
         });
         self.system.ids.insert(id.to_owned(), Item::Constraint(idx));
         Ok(idx)
+    }
+}
+
+/// The field naming each of `count` parts of a composite kind: its part fields in order, the
+/// last one repeated for a kind built on a list (a B-spline's `poles`).
+fn part_fields(kind: EntityKind, count: usize) -> Vec<&'static str> {
+    let fields = kind.part_fields();
+    match fields.last() {
+        Some(last) => {
+            (0..count.max(fields.len())).map(|i| *fields.get(i).unwrap_or(last)).collect()
+        }
+        None => Vec::new(),
     }
 }

@@ -101,7 +101,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "unknown_variant.ron",
-            "unknown_variant.ron:3:16: RON syntax: Unexpected variant named `Pt` in enum `Entity`, expected one of `Point`, `Line`, `Segment`, `Circle`, `Plane`, `Sphere`, or `Arc` instead",
+            "unknown_variant.ron:3:16: RON syntax: Unexpected variant named `Pt` in enum `Entity`, expected one of `Point`, `Line`, `Segment`, `Circle`, `Plane`, `Sphere`, `Arc`, or `BSpline` instead",
         ),
         (
             "constraint_unknown_field.ron",
@@ -138,6 +138,14 @@ fn every_bad_file_has_its_message() {
         (
             "group_repeated.ron",
             "group_repeated.ron:5:39: group \"g\": field entities: \"p\" is named twice",
+        ),
+        (
+            "bspline_pole_not_point.ron",
+            "bspline_pole_not_point.ron:4:40: entity \"s\": field poles: a B-spline's control points are points, \"c\" is a circle",
+        ),
+        (
+            "bspline_knots.ron",
+            "bspline_knots.ron:5:20: entity \"s\": field knots: 5 knots where 6 are expected (control points + degree + 1)",
         ),
         (
             "repeated_entity.ron",

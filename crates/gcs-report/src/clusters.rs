@@ -83,14 +83,14 @@ pub fn tree_report(system: &System, node: &DecompositionNode) -> NodeReport {
     }
 }
 
-/// Entity ids of a set, segments left out when their points are in it (they add nothing to
-/// read), abbreviated when long.
+/// Entity ids of a set, segments and B-splines left out when their points are in it (they add
+/// nothing to read), abbreviated when long.
 fn short(system: &System, es: &[EntityIdx]) -> String {
     let ids: Vec<&str> = es
         .iter()
-        .filter(|e| match system.segment_points(**e) {
-            Some((a, b)) => !(es.contains(&a) && es.contains(&b)),
-            None => true,
+        .filter(|e| {
+            !system.entity(**e).kind().is_composite()
+                || !system.entity(**e).geometry.parts().iter().all(|p| es.contains(p))
         })
         .map(|e| system.entity(*e).id.as_str())
         .collect();
@@ -116,7 +116,7 @@ pub fn clusters_text(system: &System, clusters: &[Cluster]) -> Vec<String> {
         let hinges: Vec<&str> = c
             .entities
             .iter()
-            .filter(|e| shared(e) && system.segment_points(**e).is_none())
+            .filter(|e| shared(e) && !system.entity(**e).kind().is_composite())
             .map(|e| system.entity(*e).id.as_str())
             .collect();
         let mut line = format!(
@@ -198,7 +198,7 @@ pub fn dot(system: &System, trees: &[DecompositionNode]) -> String {
         let ids: Vec<&str> = node
             .entities
             .iter()
-            .filter(|e| system.segment_points(**e).is_none())
+            .filter(|e| !system.entity(**e).kind().is_composite())
             .map(|e| system.entity(*e).id.as_str())
             .collect();
         // Wrap the label every eight ids.

@@ -54,7 +54,32 @@ fn anchor(system: &System, e: EntityIdx) -> Option<P> {
             let [p, _] = at.as_ref()?;
             xy(p)
         }
+        Geometry::BSpline { .. } => {
+            let curve = spline_points(system, e)?;
+            curve.get(curve.len() / 2).copied()
+        }
     }
+}
+
+/// Points along a B-spline at its control points' sketch positions (`None` when one has
+/// none), for drawing it as a polyline.
+fn spline_points(system: &System, e: EntityIdx) -> Option<Vec<P>> {
+    let Geometry::BSpline { degree, poles, knots, weights, periodic } = &system.entity(e).geometry
+    else {
+        return None;
+    };
+    let at: Option<Vec<Vec<f64>>> = poles
+        .iter()
+        .map(|p| match &system.entity(*p).geometry {
+            Geometry::Point { at } => at.as_ref().map(|c| c.iter().map(f).collect()),
+            _ => None,
+        })
+        .collect();
+    let k = gcs_model::spline::knots_or_default(*degree, poles.len(), knots.as_deref(), *periodic);
+    let w = weights.as_deref().unwrap_or_default();
+    let curve = gcs_model::spline::sample(*degree, &at?, &k, w, *periodic, 16 * poles.len());
+    let curve: Vec<P> = curve.iter().filter_map(|c| Some([*c.first()?, *c.get(1)?])).collect();
+    (!curve.is_empty()).then_some(curve)
 }
 
 /// The drawing's extent: every anchor, and circles and arcs in full.
@@ -216,6 +241,42 @@ pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Ve
                     _ => None,
                 }
             }
+            Geometry::BSpline { poles, periodic, .. } => spline_points(system, e).map(|curve| {
+                let polyline = |points: &mut dyn Iterator<Item = P>| {
+                    let mut d = String::new();
+                    for (i, p) in points.enumerate() {
+                        let (x, y) = at(p);
+                        d.push_str(&format!("{} {x} {y} ", if i == 0 { "M" } else { "L" }));
+                    }
+                    d.trim_end().to_owned()
+                };
+                // The control polygon, thin and dashed, under the curve.
+                let mut corners =
+                    poles.iter().filter_map(|p| anchor(system, *p)).collect::<Vec<P>>();
+                if *periodic && let Some(first) = corners.first().copied() {
+                    corners.push(first);
+                }
+                Group::new()
+                    .add(
+                        Path::new()
+                            .set("d", polyline(&mut corners.into_iter()))
+                            .set("stroke", colour)
+                            .set("stroke-width", 0.3 * line_width)
+                            .set(
+                                "stroke-dasharray",
+                                format!("{} {}", 2.0 * line_width, 2.0 * line_width),
+                            ),
+                    )
+                    .add(
+                        Path::new()
+                            .set("d", polyline(&mut curve.into_iter()))
+                            .set("stroke", colour)
+                            .set("stroke-width", line_width)
+                            .set("stroke-linejoin", "round")
+                            .add(title),
+                    )
+                    .into()
+            }),
             _ => None,
         };
         if let Some(shape) = shape {
@@ -505,7 +566,7 @@ pub fn plan_svg(system: &System, trees: &[gcs_analysis::DecompositionNode]) -> S
         }
         let node = all[k];
         let ids: Vec<&str> = (node.entities.iter())
-            .filter(|e| system.segment_points(**e).is_none())
+            .filter(|e| !system.entity(**e).kind().is_composite())
             .map(|e| system.entity(*e).id.as_str())
             .collect();
         let mut lines: Vec<String> = ids.chunks(6).map(|c| c.join(" ")).collect();

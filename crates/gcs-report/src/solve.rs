@@ -210,7 +210,7 @@ fn entity_json(
             };
             m.insert("at".into(), Value::Array(vec![f(&p), f(&r)]));
         }
-        Geometry::Segment { .. } => return None,
+        Geometry::Segment { .. } | Geometry::BSpline { .. } => return None,
     }
     Some(Value::Object(m))
 }

@@ -286,7 +286,7 @@ impl Facts {
                 EntityClass::Point | EntityClass::Circle | EntityClass::Sphere => {
                     point_class[e.index()] = plain_find(&mut pparent, e.0);
                 }
-                EntityClass::Line | EntityClass::Plane => {}
+                EntityClass::Line | EntityClass::Plane | EntityClass::Curve => {}
             }
         }
         // Carriers: one per line and per segment, carrying point classes.
@@ -545,8 +545,10 @@ impl Facts {
                 EntityClass::Point | EntityClass::Circle | EntityClass::Sphere => {
                     out.push(Elem::Point(self.point_class[e.index()]))
                 }
-                // A composite line (a segment) counts as its points, added by the caller.
+                // A composite entity (a segment, a B-spline) counts as its points, added by
+                // the caller.
                 EntityClass::Line if kind.is_composite() => {}
+                EntityClass::Curve => {}
                 EntityClass::Line => out.push(Elem::Line(self.carrier[e.index()])),
                 EntityClass::Plane => out.push(Elem::Plane(e.0)),
             }
@@ -555,12 +557,12 @@ impl Facts {
             if e.index() >= self.entity_count {
                 continue;
             }
-            match system.segment_points(e) {
-                Some((a, b)) => {
-                    add(a, &mut out);
-                    add(b, &mut out);
+            if system.entity(e).kind().is_composite() {
+                for p in system.entity(e).geometry.parts() {
+                    add(p, &mut out);
                 }
-                None => add(e, &mut out),
+            } else {
+                add(e, &mut out);
             }
         }
         out.sort_unstable();

@@ -239,9 +239,10 @@ impl DorOracle for WitnessDor {
             if e.index() >= self.spans.len() || e.index() >= system.entities().len() {
                 continue;
             }
-            match system.segment_points(e) {
-                Some((a, b)) => base.extend([a, b]),
-                None => base.push(e),
+            if system.entity(e).kind().is_composite() {
+                base.extend(system.base_entities(e));
+            } else {
+                base.push(e);
             }
         }
         base.sort_unstable();

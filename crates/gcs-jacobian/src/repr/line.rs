@@ -34,7 +34,8 @@ fn sketch_points(geometry: &Geometry) -> Option<&[Vec<BigRational>; 2]> {
         | Geometry::Circle { .. }
         | Geometry::Plane { .. }
         | Geometry::Sphere { .. }
-        | Geometry::Arc { .. } => None,
+        | Geometry::Arc { .. }
+        | Geometry::BSpline { .. } => None,
     }
 }
 

@@ -193,7 +193,7 @@ impl Repr {
             (EntityKind::Circle | EntityKind::Arc, _) => Some(Repr::Circle),
             (EntityKind::Plane, _) => Some(Repr::Plane),
             (EntityKind::Sphere, _) => Some(Repr::Sphere),
-            (EntityKind::Segment, _) => None,
+            (EntityKind::Segment | EntityKind::BSpline, _) => None,
         }
     }
 

@@ -34,7 +34,8 @@ impl Representation for Plane {
             | Geometry::Segment { .. }
             | Geometry::Circle { .. }
             | Geometry::Sphere { .. }
-            | Geometry::Arc { .. } => None,
+            | Geometry::Arc { .. }
+            | Geometry::BSpline { .. } => None,
         }
     }
 

@@ -23,7 +23,8 @@ impl<const N: usize> Representation for Point<N> {
             | Geometry::Circle { .. }
             | Geometry::Plane { .. }
             | Geometry::Sphere { .. }
-            | Geometry::Arc { .. } => None,
+            | Geometry::Arc { .. }
+            | Geometry::BSpline { .. } => None,
         }
     }
 

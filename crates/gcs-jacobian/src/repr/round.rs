@@ -28,7 +28,8 @@ impl<const N: usize> Representation for Round<N> {
             Geometry::Point { .. }
             | Geometry::Line { .. }
             | Geometry::Segment { .. }
-            | Geometry::Plane { .. } => None,
+            | Geometry::Plane { .. }
+            | Geometry::BSpline { .. } => None,
         }
     }
 
