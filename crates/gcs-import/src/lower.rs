@@ -8,7 +8,9 @@
 //!   (its end points `<id>.start`, `<id>.end` are the arc's own); a 3D plane a `Plane`. A
 //!   named point of a curve is addressed as the model does: `<id>.start`, `<id>.end`,
 //!   `<id>.center`. External geometry is fixed where it is drawn: a `Fix` named `<id>#fixed`.
-//!   Ellipses, elliptical arcs and B-splines are not in the gcs model yet: skipped, with every
+//!   A B-spline is a `BSpline` on control points of its own: `<id>.start` and `<id>.end` (the
+//!   curve's end points) for the first and last of a clamped spline, `<id>.pole<i>` for the
+//!   others. Ellipses and elliptical arcs are not in the gcs model yet: skipped, with every
 //!   constraint that refers to them.
 //! - **Constraints** keep the source's id. Where one CAD constraint says two things it becomes
 //!   two gcs constraints, the second named after the first: tangency at shared end points is
@@ -68,6 +70,12 @@ enum Shape {
     Circle,
     Arc,
     Plane,
+    /// A B-spline with this many control points, clamped (its ends are its first and last
+    /// control points) or not.
+    Spline {
+        poles: usize,
+        clamped: bool,
+    },
 }
 
 /// What a reference stands for once resolved.
@@ -81,6 +89,8 @@ enum Class {
     Round,
     /// A plane.
     Plane,
+    /// A free-form curve (a B-spline).
+    Curve,
 }
 
 /// A resolved reference: the model id and what it is.
@@ -208,9 +218,43 @@ impl Lowering {
             }
             Geometry::Ellipse { .. } => return Err(not_in_model("an ellipse")),
             Geometry::EllipticalArc { .. } => return Err(not_in_model("an elliptical arc")),
-            Geometry::BSpline { .. } => return Err(not_in_model("a B-spline")),
+            Geometry::BSpline { degree, poles, weights, knots, periodic } => {
+                return self.bspline(id, *degree, poles, weights.as_deref(), knots, *periodic);
+            }
         }
         .map_err(e)
+    }
+
+    /// A B-spline on control points of its own ([`pole_id`]).
+    fn bspline(
+        &mut self,
+        id: &str,
+        degree: u32,
+        poles: &[crate::ir::Coords],
+        weights: Option<&[crate::ir::Number]>,
+        knots: &[(crate::ir::Number, u32)],
+        periodic: bool,
+    ) -> Result<Shape, String> {
+        let e = |e: gcs_model::ModelError| e.to_string();
+        let mut flat: Vec<BigRational> = Vec::new();
+        for (i, (k, m)) in knots.iter().enumerate() {
+            // A periodic spline's knots are those of one period: its last knot closes the period
+            // (and repeats the first's multiplicity), so it is written once.
+            let m = if periodic && i + 1 == knots.len() { 1 } else { *m };
+            flat.extend(std::iter::repeat_n(k.0.clone(), m as usize));
+        }
+        let weights = weights.map(|w| w.iter().map(|w| w.0.clone()).collect::<Vec<_>>());
+        let weights =
+            weights.filter(|w| w.iter().any(|w| *w != BigRational::from_integer(1.into())));
+        let clamped = gcs_model::spline::is_clamped(degree, poles.len(), Some(&flat), periodic);
+        let n = poles.len();
+        let ids: Vec<String> = (0..n).map(|i| pole_id(id, i, n, clamped)).collect();
+        for (pole, at) in ids.iter().zip(poles) {
+            self.builder.point(pole, Some(rational(at))).map_err(e)?;
+        }
+        let names: Vec<&str> = ids.iter().map(String::as_str).collect();
+        self.builder.bspline(id, degree, &names, Some(flat), weights, periodic).map_err(e)?;
+        Ok(Shape::Spline { poles: n, clamped })
     }
 
     /// The model id of a reference, and what it is.
@@ -234,12 +278,26 @@ impl Lowering {
                     Shape::Segment | Shape::Line => Class::Straight,
                     Shape::Circle | Shape::Arc => Class::Round,
                     Shape::Plane => Class::Plane,
+                    Shape::Spline { .. } => Class::Curve,
                 },
                 shape: Some(shape),
             }),
             (Part::Start, Shape::Segment | Shape::Arc) => Ok(point("start")),
             (Part::End, Shape::Segment | Shape::Arc) => Ok(point("end")),
             (Part::Center, Shape::Circle | Shape::Arc) => Ok(point("center")),
+            (Part::Pole(i), Shape::Spline { poles, clamped }) if i < poles => Ok(Target {
+                id: pole_id(&r.entity, i, poles, clamped),
+                class: Class::Point,
+                shape: None,
+            }),
+            (Part::Start, Shape::Spline { clamped: true, .. }) => Ok(point("start")),
+            (Part::End, Shape::Spline { clamped: true, .. }) => Ok(point("end")),
+            (Part::Start | Part::End, Shape::Spline { clamped: false, .. }) => Err(format!(
+                "refers to the {} of {}, a B-spline that is not clamped: its end is no control \
+                 point, and a point on the curve is not in the gcs model yet",
+                part_name(r.part),
+                r.entity
+            )),
             (part, shape) => Err(format!(
                 "refers to the {} of {} ({}), which the gcs model does not name",
                 part_name(part),
@@ -579,6 +637,22 @@ impl Lowering {
         }
     }
 
+    /// For an end of a B-spline, the segment of its control polygon at that end (made once, as
+    /// `<id>#start-leg` or `<id>#end-leg`): the line the curve is tangent to there. Other
+    /// curves are returned as they are.
+    fn end_leg(&mut self, curve: Target, shape: Shape, part: Part) -> Result<Target, String> {
+        let Shape::Spline { poles, clamped } = shape else { return Ok(curve) };
+        let start = part == Part::Start;
+        let leg = format!("{}#{}-leg", curve.id, if start { "start" } else { "end" });
+        if self.builder.system().entity_by_id(&leg).is_none() {
+            let (i, j) = if start { (0, 1) } else { (poles - 1, poles - 2) };
+            let (p, q) =
+                (pole_id(&curve.id, i, poles, clamped), pole_id(&curve.id, j, poles, clamped));
+            self.builder.segment(&leg, &p, &q).map_err(|e| e.to_string())?;
+        }
+        Ok(Target { id: leg, class: Class::Straight, shape: Some(Shape::Segment) })
+    }
+
     /// A segment's end points as targets.
     fn ends(&self, segment: &Target) -> (Target, Target) {
         let point = |part: &str| Target {
@@ -604,6 +678,9 @@ impl Lowering {
             self.shapes.get(id).copied().ok_or_else(|| format!("refers to {id}, which is unknown"))
         };
         let (sa, sb) = (shape(&a.id)?, shape(&b.id)?);
+        // A clamped B-spline is tangent at its end to the leg of its control polygon there.
+        let a = self.end_leg(a, sa, c.refs[0].part)?;
+        let b = self.end_leg(b, sb, c.refs[1].part)?;
         let round = |s: Shape| matches!(s, Shape::Circle | Shape::Arc);
         let meet = (K::Coincident, "coincident", vec![&t[0], &t[1]], None);
         match (c.kind, round(sa), round(sb)) {
@@ -652,6 +729,7 @@ fn shape_name(shape: Shape) -> &'static str {
         Shape::Circle => "a circle",
         Shape::Arc => "an arc",
         Shape::Plane => "a plane",
+        Shape::Spline { .. } => "a B-spline",
     }
 }
 
@@ -661,5 +739,16 @@ fn class_name(class: Class) -> &'static str {
         Class::Straight => "a line",
         Class::Round => "a circle",
         Class::Plane => "a plane",
+        Class::Curve => "a B-spline",
+    }
+}
+
+/// The model id of control point `i` of B-spline `id` (of `n`): a clamped spline's first and last
+/// are the curve's end points, `<id>.start` and `<id>.end`; the others `<id>.pole<i>`.
+fn pole_id(id: &str, i: usize, n: usize, clamped: bool) -> String {
+    match i {
+        0 if clamped => format!("{id}.start"),
+        i if clamped && i + 1 == n => format!("{id}.end"),
+        i => format!("{id}.pole{i}"),
     }
 }
