@@ -136,6 +136,9 @@ pub fn rebuild(system: &System, keep_sketch: impl Fn(EntityIdx) -> bool) -> Syst
             }
         };
         r.unwrap_or_else(|err| panic!("{}: rebuilding entity {id}: {err}", system.name()));
+        if entity.construction {
+            b.construction(id).unwrap_or_else(|err| panic!("{}: {id}: {err}", system.name()));
+        }
     }
     for c in system.constraint_indices() {
         let con = system.constraint(c);
@@ -145,6 +148,12 @@ pub fn rebuild(system: &System, keep_sketch: impl Fn(EntityIdx) -> bool) -> Syst
         let args: Vec<&str> = con.args.iter().map(|e| system.entity(*e).id.as_str()).collect();
         b.constraint(con.kind, &con.id, &args, con.value.clone()).unwrap_or_else(|err| {
             panic!("{}: rebuilding constraint {}: {err}", system.name(), con.id)
+        });
+    }
+    for r in system.references() {
+        let args: Vec<&str> = r.args.iter().map(|e| system.entity(*e).id.as_str()).collect();
+        b.reference(r.kind, &r.id, &args, r.value.clone()).unwrap_or_else(|err| {
+            panic!("{}: rebuilding reference {}: {err}", system.name(), r.id)
         });
     }
     b.build()

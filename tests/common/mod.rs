@@ -32,6 +32,8 @@ impl Verdict {
         r.float_qr_rank = None;
         r.clusters_arithmetic = ArithmeticName::None;
         r.sketch = None;
+        // Measured at the drawing, which a generated witness does not have.
+        r.measured.clear();
         r.witness_error_bound = None;
         r.uncertain = None;
         // How global rigidity was decided (method, arithmetic, configuration, bound) is the

@@ -212,3 +212,61 @@ fn parallel_solves_are_the_sequential_run() {
     assert!(one.lines().count() > 20);
     assert_eq!(three, one);
 }
+
+/// A reference (driven) dimension is measured, not imposed: at the drawing by `analyze`, at the
+/// solution by `solve` (where the drawing moved, so did it), and `--out` writes it back as a
+/// reference; construction geometry keeps its flag.
+#[test]
+fn reference_dimensions_are_measured_at_the_drawing_and_at_the_solution() {
+    let file = temp("triangle_ref.ron");
+    std::fs::write(
+        &file,
+        r#"System(name: "tri", dim: 2, entities: [
+            Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]), Point(id: "c", at: [1, 3]),
+            Segment(id: "ab", from: "a", to: "b", construction: true),
+            Segment(id: "ac", from: "a", to: "c"),
+        ], constraints: [
+            Fix(id: "f", a: "a"), Horizontal(id: "h", a: "ab"),
+            Distance(id: "d1", a: "a", b: "b", value: 4),
+            Distance(id: "d2", a: "b", b: "c", value: 4),
+            Distance(id: "d3", a: "a", b: "c", value: 3),
+            Distance(id: "ref_bc", a: "b", b: "c", value: 4.2, reference: true),
+            Angle(id: "ref_angle", a: "ab", b: "ac", reference: true),
+        ])"#,
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let (code, out, err) = gcs(&["analyze", "--format", "json", path]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["constraints"], 5, "references are not constraints: {v}");
+    assert_eq!(v["dof"], 0);
+    let m = &v["measured"];
+    assert_eq!(m[0]["constraint"], "ref_bc");
+    // At the drawing: |bc| = √18, the angle at a is atan(3) = 71.565…°.
+    assert!((m[0]["value"].as_f64().unwrap() - 18f64.sqrt()).abs() < 1e-12, "{m}");
+    assert_eq!(m[0]["written"], 4.2);
+    assert!((m[1]["value"].as_f64().unwrap() - 3f64.atan().to_degrees()).abs() < 1e-9, "{m}");
+
+    let dir = temp("out_ref");
+    let (code, out, err) =
+        gcs(&["solve", "--format", "json", "--out", dir.to_str().unwrap(), path]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["status"], "solved");
+    let m = &v["measured"];
+    // Solved: |bc| = 4 as d2 says; cos A = (16 + 9 − 16) / 24.
+    assert!((m[0]["value"].as_f64().unwrap() - 4.0).abs() < 1e-9, "{m}");
+    assert!((m[1]["value"].as_f64().unwrap() - (9.0f64 / 24.0).acos().to_degrees()).abs() < 1e-6);
+    let written = std::fs::read_to_string(dir.join("tri.ron")).unwrap();
+    assert!(
+        written
+            .contains("Distance(id: \"ref_bc\", a: \"b\", b: \"c\", value: 4.2, reference: true)")
+    );
+    assert!(written.contains("Segment(id: \"ab\", from: \"a\", to: \"b\", construction: true)"));
+    let (_, text, _) = gcs(&["solve", path]);
+    assert!(
+        text.contains("reference dimensions (measured at the solution, not imposed): ref_bc = 4,"),
+        "{text}"
+    );
+}

@@ -24,8 +24,11 @@
 //!   value, equal lengths or radii `EqualLength` or `EqualRadius`, a line's angle to the x axis
 //!   an `Angle` to a fixed horizontal line `#x-axis`.
 //! - **Numbers** are snapped to 10^-9 ([`snap`]): CAD float noise off, the drawing unmoved.
-//! - **Reference (non-driving) dimensions** are measured, not imposed: not lowered, listed in
-//!   [`Lowered::reference`].
+//! - **Reference (non-driving) dimensions** are measured, not imposed: listed in
+//!   [`Lowered::reference`], and a reference dimension of the model
+//!   ([`gcs_model::System::references`]) where they are one dimension of the model's (a
+//!   distance, a length, an angle, a radius: a diameter is measured as its radius).
+//! - **Construction geometry** keeps its flag ([`gcs_model::Entity::construction`]).
 //! - Whatever cannot be expressed is listed in [`Lowered::skipped`] with its reason (after
 //!   what the reader skipped), and the import is not complete.
 
@@ -115,6 +118,12 @@ struct Lowering {
     dropped: std::collections::HashMap<String, String>,
     skipped: Vec<Skipped>,
     reference: Vec<String>,
+    /// Lowering a reference (non-driving) dimension: what it measures becomes a reference of
+    /// the model, never an equation.
+    as_reference: bool,
+    /// The reference dimension being lowered has no value in the file (it is driven: the CAD
+    /// program computes it).
+    reference_without_value: bool,
 }
 
 /// Lowers a sketch into a gcs model. Never fails: what cannot be expressed is skipped with its
@@ -129,11 +138,17 @@ pub fn lower(sketch: &Sketch) -> Lowered {
         dropped: Default::default(),
         skipped: sketch.skipped.clone(),
         reference: Vec::new(),
+        as_reference: false,
+        reference_without_value: false,
     };
     for entity in &sketch.entities {
         match l.entity(&entity.id, &entity.geometry) {
             Ok(shape) => {
                 l.shapes.insert(entity.id.clone(), shape);
+                if entity.construction {
+                    // The entity was just made: marking it cannot fail.
+                    let _ = l.builder.construction(&entity.id);
+                }
                 if entity.external {
                     let id = format!("{}#fixed", entity.id);
                     if let Err(e) = l.builder.constraint(K::Fix, &id, &[&entity.id], None) {
@@ -148,9 +163,22 @@ pub fn lower(sketch: &Sketch) -> Lowered {
         }
     }
     l.find_joints(&sketch.constraints);
+    let mut notes = sketch.notes.clone();
     for c in &sketch.constraints {
         if !c.driving {
+            // Measured, not imposed: a reference dimension of the model where it is one
+            // dimension of the model's; otherwise only listed (nothing is lost: it imposes
+            // nothing).
             l.reference.push(c.id.clone());
+            l.as_reference = true;
+            l.reference_without_value = c.value.is_none();
+            if let Err(reason) = l.constraint(c) {
+                notes.push(Skipped {
+                    item: c.id.clone(),
+                    reason: format!("a reference dimension, not measured: {reason}"),
+                });
+            }
+            l.as_reference = false;
             continue;
         }
         if let Err(reason) = l.constraint(c) {
@@ -161,7 +189,7 @@ pub fn lower(sketch: &Sketch) -> Lowered {
         system: l.builder.build(),
         label: sketch.label.clone(),
         skipped: l.skipped,
-        notes: sketch.notes.clone(),
+        notes,
         reference: l.reference,
         source_verdict: sketch.source_verdict.clone(),
     }
@@ -370,6 +398,10 @@ impl Lowering {
         value: Option<BigRational>,
     ) -> Result<(), String> {
         let ids: Vec<&str> = args.iter().map(|t| t.id.as_str()).collect();
+        if self.as_reference {
+            let value = value.filter(|_| !self.reference_without_value);
+            return self.builder.reference(kind, id, &ids, value).map_err(|e| e.to_string());
+        }
         self.builder.constraint(kind, id, &ids, value).map(|_| ()).map_err(|e| e.to_string())
     }
 
@@ -381,6 +413,9 @@ impl Lowering {
         id: &str,
         parts: &[(K, &str, Vec<&Target>, Option<BigRational>)],
     ) -> Result<(), String> {
+        if self.as_reference {
+            return Err("a reference dimension that is not one dimension of the model".into());
+        }
         let mut done = Vec::new();
         for (kind, suffix, args, value) in parts {
             let part_id = if suffix.is_empty() { id.to_owned() } else { format!("{id}#{suffix}") };
@@ -403,6 +438,9 @@ impl Lowering {
     /// dimension rational at a rational witness where the distance to the boundary itself is
     /// not. Its sketch radius is the drawing's (to 10^-9).
     fn distance_to_round(&mut self, id: &str, t: &[Target], v: BigRational) -> Result<(), String> {
+        if self.as_reference {
+            return Err("a reference distance to a circle's boundary".into());
+        }
         let (round, other) =
             if t[1].class == Class::Round { (&t[1], &t[0]) } else { (&t[0], &t[1]) };
         let (center, r) = self.round_f64(&round.id).ok_or("the circle has no sketch position")?;
@@ -512,8 +550,14 @@ impl Lowering {
 
     fn constraint(&mut self, c: &Constraint) -> Result<(), String> {
         let targets = c.refs.iter().map(|r| self.target(r)).collect::<Result<Vec<_>, _>>()?;
+        // (A reference dimension may have none: it is measured, and the model keeps no value.)
+        let as_reference = self.as_reference;
         let value = || -> Result<BigRational, String> {
-            c.value.as_ref().map(|v| snap(&v.0)).ok_or_else(|| "no value".to_owned())
+            match c.value.as_ref() {
+                Some(v) => Ok(snap(&v.0)),
+                None if as_reference => Ok(BigRational::from_integer(0.into())),
+                None => Err("no value".to_owned()),
+            }
         };
         let zero = || BigRational::from_integer(0.into());
         let classes: Vec<Class> = targets.iter().map(|t| t.class).collect();

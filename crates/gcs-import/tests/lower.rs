@@ -155,7 +155,10 @@ fn dimensions_axes_externals_and_references() {
             origin,
             seg("l", (0, 0), (4, 3)),
             seg("m", (0, 0), (0, 5)),
-            entity("c", Geometry::Circle { center: vec![n(1), n(1)], radius: n(3) }),
+            Entity {
+                construction: true,
+                ..entity("c", Geometry::Circle { center: vec![n(1), n(1)], radius: n(3) })
+            },
         ],
         vec![
             constraint("d", Kind::Diameter, vec![Ref::whole("c")], Some(6)),
@@ -193,6 +196,17 @@ fn dimensions_axes_externals_and_references() {
     assert_eq!(lowered(&l, "dx").1, strings(&["m.start", "m.end"]));
     assert_eq!(l.reference, strings(&["ref"]));
     assert!(l.system.constraint_by_id("ref").is_none(), "a reference dimension is not imposed");
+    // It is a reference dimension of the model: m's length, measured (5 at the drawing).
+    let refs: Vec<(&str, ConstraintKind)> =
+        l.system.references().iter().map(|r| (r.id.as_str(), r.kind)).collect();
+    assert_eq!(refs, [("ref", ConstraintKind::Distance)]);
+    let c = l.system.entity_by_id("c").unwrap();
+    assert!(l.system.entity(c).construction, "construction geometry keeps its flag");
+    assert!(
+        l.system
+            .to_ron()
+            .contains("Circle(id: \"c\", center: [1, 1], radius: 3, construction: true)")
+    );
 }
 
 #[test]

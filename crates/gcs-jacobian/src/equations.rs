@@ -111,6 +111,18 @@ impl<'s> Equations<'s> {
         Local::new(self.system, self.layout, &base, x)
     }
 
+    /// The measure at `x` of a dimension of the system — a metric constraint or a reference
+    /// dimension ([`gcs_model::System::references`]) — in its units (model units, degrees, a
+    /// ratio): what a CAD program shows beside it. `None` for a constraint that is not a
+    /// dimension, or where the measure is undefined (a line of zero length).
+    pub fn measure(&self, c: &gcs_model::Constraint, x: &[f64]) -> Option<f64> {
+        let metric = c.signature.metric()?;
+        let base = self.system.signature_base_entities(c.signature);
+        let local = Local::new(self.system, self.layout, &base, x);
+        let (m, _) = laws::measure(metric, 0, &local, 0.0)?;
+        m.value.is_finite().then_some(m.value)
+    }
+
     /// The rows of constraint `c` at `x` (one value per column) in any field: every candidate
     /// equation (a constraint whose natural equations outnumber its DOC gives them all), with
     /// its value; see the module documentation for metric constraints. `Fix` compares with the

@@ -607,16 +607,22 @@ pub(crate) enum RawEntity {
         id: String,
         #[serde(default)]
         at: Option<Vec<Num>>,
+        #[serde(default)]
+        construction: bool,
     },
     Line {
         id: String,
         #[serde(default)]
         at: Option<Vec<Vec<Num>>>,
+        #[serde(default)]
+        construction: bool,
     },
     Segment {
         id: String,
         from: String,
         to: String,
+        #[serde(default)]
+        construction: bool,
     },
     Circle {
         id: String,
@@ -624,11 +630,15 @@ pub(crate) enum RawEntity {
         center: Option<Vec<Num>>,
         #[serde(default)]
         radius: Option<Num>,
+        #[serde(default)]
+        construction: bool,
     },
     Plane {
         id: String,
         #[serde(default)]
         at: Option<Vec<Vec<Num>>>,
+        #[serde(default)]
+        construction: bool,
     },
     Sphere {
         id: String,
@@ -636,6 +646,8 @@ pub(crate) enum RawEntity {
         center: Option<Vec<Num>>,
         #[serde(default)]
         radius: Option<Num>,
+        #[serde(default)]
+        construction: bool,
     },
     Arc {
         id: String,
@@ -647,6 +659,8 @@ pub(crate) enum RawEntity {
         start: Option<Vec<Num>>,
         #[serde(default)]
         end: Option<Vec<Num>>,
+        #[serde(default)]
+        construction: bool,
     },
     BSpline {
         id: String,
@@ -658,6 +672,8 @@ pub(crate) enum RawEntity {
         weights: Option<Vec<Num>>,
         #[serde(default)]
         periodic: bool,
+        #[serde(default)]
+        construction: bool,
     },
 }
 
@@ -670,37 +686,58 @@ pub(crate) struct ReadEntity<'r> {
     pub(crate) refs: Vec<(&'static str, &'r str)>,
     /// The sketch positions of the points an arc owns (start, end).
     pub(crate) owned_points: Vec<Option<Coords>>,
+    /// Construction geometry.
+    pub(crate) construction: bool,
 }
 
 impl RawEntity {
     /// The entity's sketch data as exact numbers.
     pub(crate) fn read(&self) -> Result<ReadEntity<'_>, ModelError> {
+        let mut read = self.read_geometry()?;
+        read.construction = match self {
+            RawEntity::Point { construction, .. }
+            | RawEntity::Line { construction, .. }
+            | RawEntity::Segment { construction, .. }
+            | RawEntity::Circle { construction, .. }
+            | RawEntity::Plane { construction, .. }
+            | RawEntity::Sphere { construction, .. }
+            | RawEntity::Arc { construction, .. }
+            | RawEntity::BSpline { construction, .. } => *construction,
+        };
+        Ok(read)
+    }
+
+    fn read_geometry(&self) -> Result<ReadEntity<'_>, ModelError> {
         use crate::read::{number, read_coords, two_coords};
         let placeholder = EntityIdx(u32::MAX);
         Ok(match self {
-            RawEntity::Point { id, at } => ReadEntity {
+            RawEntity::Point { id, at, .. } => ReadEntity {
                 id,
                 geometry: Geometry::Point {
                     at: at.as_deref().map(|v| read_coords(id, "at", v)).transpose()?,
                 },
                 refs: Vec::new(),
                 owned_points: Vec::new(),
+                construction: false,
             },
-            RawEntity::Line { id, at } => ReadEntity {
+            RawEntity::Line { id, at, .. } => ReadEntity {
                 id,
                 geometry: Geometry::Line {
                     at: at.as_deref().map(|v| two_coords(id, "at", v)).transpose()?,
                 },
                 refs: Vec::new(),
                 owned_points: Vec::new(),
+                construction: false,
             },
-            RawEntity::Segment { id, from, to } => ReadEntity {
+            RawEntity::Segment { id, from, to, .. } => ReadEntity {
                 id,
                 geometry: Geometry::Segment { from: placeholder, to: placeholder },
                 refs: vec![("from", from), ("to", to)],
                 owned_points: Vec::new(),
+                construction: false,
             },
-            RawEntity::Circle { id, center, radius } | RawEntity::Sphere { id, center, radius } => {
+            RawEntity::Circle { id, center, radius, .. }
+            | RawEntity::Sphere { id, center, radius, .. } => {
                 let center = center.as_deref().map(|v| read_coords(id, "center", v)).transpose()?;
                 let radius =
                     radius.as_ref().map(|r| number("entity", id, "radius", r)).transpose()?;
@@ -709,9 +746,15 @@ impl RawEntity {
                 } else {
                     Geometry::Sphere { center, radius }
                 };
-                ReadEntity { id, geometry, refs: Vec::new(), owned_points: Vec::new() }
+                ReadEntity {
+                    id,
+                    geometry,
+                    refs: Vec::new(),
+                    owned_points: Vec::new(),
+                    construction: false,
+                }
             }
-            RawEntity::Arc { id, center, radius, start, end } => {
+            RawEntity::Arc { id, center, radius, start, end, .. } => {
                 let center = center.as_deref().map(|v| read_coords(id, "center", v)).transpose()?;
                 let radius =
                     radius.as_ref().map(|r| number("entity", id, "radius", r)).transpose()?;
@@ -728,9 +771,10 @@ impl RawEntity {
                     },
                     refs: Vec::new(),
                     owned_points: vec![start, end],
+                    construction: false,
                 }
             }
-            RawEntity::BSpline { id, degree, poles, knots, weights, periodic } => {
+            RawEntity::BSpline { id, degree, poles, knots, weights, periodic, .. } => {
                 let list = |field: &'static str, v: &Option<Vec<Num>>| {
                     v.as_ref()
                         .map(|v| v.iter().map(|x| number("entity", id, field, x)).collect())
@@ -747,15 +791,17 @@ impl RawEntity {
                     },
                     refs: poles.iter().map(|p| ("poles", p.as_str())).collect(),
                     owned_points: Vec::new(),
+                    construction: false,
                 }
             }
-            RawEntity::Plane { id, at } => ReadEntity {
+            RawEntity::Plane { id, at, .. } => ReadEntity {
                 id,
                 geometry: Geometry::Plane {
                     at: at.as_deref().map(|v| two_coords(id, "at", v)).transpose()?,
                 },
                 refs: Vec::new(),
                 owned_points: Vec::new(),
+                construction: false,
             },
         })
     }

@@ -234,6 +234,16 @@ pub enum ModelErrorKind {
         /// Its kind.
         found: EntityKind,
     },
+    /// A reference (driven) constraint that is not a dimension.
+    #[error(
+        "constraint \"{id}\": field reference: a reference (driven) {kind} is not a dimension: only dimensions (Distance, Angle, Radius, DistanceX, DistanceY, LengthRatio) are measured"
+    )]
+    NotADimension {
+        /// The constraint id.
+        id: String,
+        /// Its kind.
+        kind: crate::kinds::ConstraintKind,
+    },
     /// An `Orientation` that is not three points in 2D (four in 3D) with a sign of ±1.
     #[error("constraint \"{id}\": Orientation: field {field}: {why}")]
     Orientation {
@@ -277,6 +287,7 @@ impl ModelErrorKind {
             | ModelErrorKind::SegmentEndpoint { id, .. }
             | ModelErrorKind::FixWithoutPosition { id, .. }
             | ModelErrorKind::Orientation { id, .. }
+            | ModelErrorKind::NotADimension { id, .. }
             | ModelErrorKind::Group { id, .. } => Some(id),
             ModelErrorKind::UnknownId { owner, .. }
             | ModelErrorKind::NotAnEntity { owner, .. }
@@ -303,6 +314,7 @@ impl ModelErrorKind {
             | ModelErrorKind::Orientation { field, .. } => Some(field),
             ModelErrorKind::RepeatedEntity { second, .. } => Some(second),
             ModelErrorKind::Group { .. } => Some("entities"),
+            ModelErrorKind::NotADimension { .. } => Some("reference"),
             ModelErrorKind::UnsupportedDim(_) => Some("dim"),
             ModelErrorKind::DuplicateId { .. } => Some("id"),
             ModelErrorKind::Degenerate { field, .. } => *field,

@@ -42,6 +42,8 @@ struct RawConstraint {
     args: Vec<String>,
     value: Option<Num>,
     sign: Option<i64>,
+    /// A reference (driven) dimension: measured, not imposed.
+    reference: bool,
 }
 
 /// The variant name of an orientation condition in the `constraints` list.
@@ -104,7 +106,15 @@ impl<'de> Deserialize<'de> for RawConstraint {
                 let mut id = None;
                 let mut args: Vec<Option<String>> = vec![None; entity_fields.len()];
                 let mut value: Option<Option<Num>> = None;
+                let mut reference = None;
                 while let Some(key) = map.next_key::<String>()? {
+                    if key == "reference" {
+                        if reference.is_some() {
+                            return Err(de::Error::duplicate_field("reference"));
+                        }
+                        reference = Some(map.next_value::<bool>()?);
+                        continue;
+                    }
                     let Some(&field) = names.iter().find(|n| **n == key) else {
                         return Err(de::Error::unknown_field(&key, names));
                     };
@@ -131,7 +141,14 @@ impl<'de> Deserialize<'de> for RawConstraint {
                     .zip(entity_fields)
                     .map(|(a, f)| a.ok_or_else(|| de::Error::missing_field(f)))
                     .collect::<Result<Vec<String>, _>>()?;
-                Ok(RawConstraint { kind: Some(kind), id, args, value: value.flatten(), sign: None })
+                Ok(RawConstraint {
+                    kind: Some(kind),
+                    id,
+                    args,
+                    value: value.flatten(),
+                    sign: None,
+                    reference: reference.unwrap_or(false),
+                })
             }
         }
 
@@ -167,6 +184,7 @@ impl<'de> Deserialize<'de> for RawConstraint {
                     args: points.ok_or_else(|| de::Error::missing_field("points"))?,
                     value: None,
                     sign: Some(sign.ok_or_else(|| de::Error::missing_field("sign"))?),
+                    reference: false,
                 })
             }
         }
@@ -239,13 +257,19 @@ pub(crate) fn two_coords(
 
 fn add_entity(b: &mut SystemBuilder, raw: &RawEntity) -> Result<EntityIdx, ModelError> {
     let read = raw.read()?;
-    if let Geometry::Arc { center, radius, .. } = read.geometry {
+    let (id, construction) = (read.id, read.construction);
+    let e = if let Geometry::Arc { center, radius, .. } = read.geometry {
         let mut owned = read.owned_points.into_iter();
         let (start, end) = (owned.next().flatten(), owned.next().flatten());
-        return b.arc(read.id, center, radius, start, end);
+        b.arc(id, center, radius, start, end)?
+    } else {
+        let parts: Vec<&str> = read.refs.iter().map(|(_, id)| *id).collect();
+        b.entity(id, read.geometry, &parts)?
+    };
+    if construction {
+        b.construction(id)?;
     }
-    let parts: Vec<&str> = read.refs.iter().map(|(_, id)| *id).collect();
-    b.entity(read.id, read.geometry, &parts)
+    Ok(e)
 }
 
 /// Adds a constraint (`None` for an orientation, which is no constraint of the system's).
@@ -260,6 +284,10 @@ fn add_constraint(
         return Ok(None);
     };
     let value = raw.value.as_ref().map(|v| number("constraint", id, "value", v)).transpose()?;
+    if raw.reference {
+        b.reference(kind, id, &args, value)?;
+        return Ok(None);
+    }
     b.constraint(kind, id, &args, value).map(Some)
 }
 

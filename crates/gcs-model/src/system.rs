@@ -50,6 +50,9 @@ pub struct Entity {
     /// `<id>.end`, a circle's `<id>.center` once a constraint names it): the curve. Such an
     /// entity is not written back to a model file (its owner's fields say it all).
     pub owner: Option<EntityIdx>,
+    /// Construction geometry (`construction: true` in the file): a helper the CAD user drew to
+    /// constrain other entities. Analysed and solved like the rest; drawn dashed.
+    pub construction: bool,
 }
 
 impl Entity {
@@ -100,6 +103,8 @@ pub enum Item {
     Orientation(usize),
     /// A group (its index in [`System::groups`]).
     Group(usize),
+    /// A reference (driven) dimension (its index in [`System::references`]).
+    Reference(usize),
 }
 
 /// A feature or part the user declares (the ESM paper's feature incorporation): a set of
@@ -145,6 +150,7 @@ pub struct System {
     constraints: Vec<Constraint>,
     orientations: Vec<Orientation>,
     groups: Vec<Group>,
+    references: Vec<Constraint>,
     ids: HashMap<String, Item>,
 }
 
@@ -177,6 +183,13 @@ impl System {
     /// The groups the user declared, in file order.
     pub fn groups(&self) -> &[Group] {
         &self.groups
+    }
+
+    /// The reference (driven, non-driving) dimensions, in file order: dimensions of a metric
+    /// kind (`reference: true` in the file) that are measured, not imposed — no equation of the
+    /// system; the analysis and the solve report their measure.
+    pub fn references(&self) -> &[Constraint] {
+        &self.references
     }
 
     /// One entity.
@@ -357,8 +370,13 @@ impl System {
     /// their points; a `Fix` on an arc also pins its end points), without repetition, in
     /// first-use order.
     pub fn constraint_base_entities(&self, c: ConstraintIdx) -> Vec<EntityIdx> {
+        self.signature_base_entities(self.constraint(c).signature)
+    }
+
+    /// The entities with degrees of freedom that a row of the constraint table acts on (of a
+    /// constraint: [`Self::constraint_base_entities`]; of a reference dimension).
+    pub fn signature_base_entities(&self, signature: Signature) -> Vec<EntityIdx> {
         let mut out = Vec::new();
-        let signature = self.constraint(c).signature;
         let mut entities = signature.entities();
         if let Signature::Fix(e) = signature
             && let Some((start, end)) = self.arc_points(e)
@@ -443,6 +461,7 @@ impl SystemBuilder {
                 entities: Vec::new(),
                 constraints: Vec::new(),
                 orientations: Vec::new(),
+                references: Vec::new(),
                 groups: Vec::new(),
                 ids: HashMap::new(),
             },
@@ -508,7 +527,13 @@ impl SystemBuilder {
             geometry.check_parts(id, &fields, names, &self.system)?;
         }
         let idx = EntityIdx(self.system.entities.len() as u32);
-        self.system.entities.push(Entity { id: id.to_owned(), geometry, position: None, owner });
+        self.system.entities.push(Entity {
+            id: id.to_owned(),
+            geometry,
+            position: None,
+            owner,
+            construction: false,
+        });
         self.system.ids.insert(id.to_owned(), Item::Entity(idx));
         if let Some((from, to)) = self.system.segment_points(idx) {
             // A segment's end points are also `<id>.start` and `<id>.end`.
@@ -688,14 +713,14 @@ impl SystemBuilder {
         }
         match self.system.ids.get(id) {
             Some(Item::Entity(e)) => Ok(*e),
-            Some(Item::Constraint(_) | Item::Orientation(_) | Item::Group(_)) => {
-                Err(ModelError::new(ModelErrorKind::NotAnEntity {
-                    item,
-                    owner: owner.to_owned(),
-                    field,
-                    id: id.to_owned(),
-                }))
-            }
+            Some(
+                Item::Constraint(_) | Item::Orientation(_) | Item::Group(_) | Item::Reference(_),
+            ) => Err(ModelError::new(ModelErrorKind::NotAnEntity {
+                item,
+                owner: owner.to_owned(),
+                field,
+                id: id.to_owned(),
+            })),
             None => Err(ModelError::new(ModelErrorKind::UnknownId {
                 item,
                 owner: owner.to_owned(),
@@ -716,6 +741,41 @@ impl SystemBuilder {
         value: Option<BigRational>,
     ) -> Result<ConstraintIdx, ModelError> {
         self.push_constraint(kind, id, args, value, None)
+    }
+
+    /// Adds a reference (driven) dimension ([`System::references`]): checked as a constraint of
+    /// the same kind, arguments and value would be, but measured, not imposed.
+    ///
+    /// # Errors
+    /// Those of [`Self::constraint`], and a kind that is not a dimension.
+    pub fn reference(
+        &mut self,
+        kind: ConstraintKind,
+        id: &str,
+        args: &[&str],
+        value: Option<BigRational>,
+    ) -> Result<(), ModelError> {
+        if !kind.is_metric() {
+            return Err(ModelError::new(ModelErrorKind::NotADimension { id: id.to_owned(), kind }));
+        }
+        let c = self.push_constraint(kind, id, args, value, None)?;
+        // Checked as a constraint, kept as a reference.
+        let reference = self.system.constraints.pop();
+        debug_assert_eq!(c.index(), self.system.constraints.len());
+        let index = self.system.references.len();
+        self.system.references.extend(reference);
+        self.system.ids.insert(id.to_owned(), Item::Reference(index));
+        Ok(())
+    }
+
+    /// Marks an entity as construction geometry ([`Entity::construction`]).
+    ///
+    /// # Errors
+    /// An id that names no entity.
+    pub fn construction(&mut self, id: &str) -> Result<(), ModelError> {
+        let e = self.resolve("entity", id, "construction", id)?;
+        self.system.entities[e.index()].construction = true;
+        Ok(())
     }
 
     /// Adds a group ([`Group`]) of the named entities (at least one, each once).

@@ -28,18 +28,27 @@ impl System {
         // The named points of curves and the constraints holding them are the curves' own: they
         // are written by their owners' fields.
         for e in self.entities().iter().filter(|e| e.owner.is_none()) {
-            let body = e.geometry.to_ron(&e.id, self);
+            let mut body = e.geometry.to_ron(&e.id, self);
+            if e.construction && body.ends_with(')') {
+                body.insert_str(body.len() - 1, ", construction: true");
+            }
             let _ = writeln!(out, "        {body},");
         }
         let _ = writeln!(out, "    ],");
         let _ = writeln!(out, "    constraints: [");
-        for c in self.constraints().iter().filter(|c| c.owner.is_none()) {
+        let written = self.constraints().iter().filter(|c| c.owner.is_none());
+        for (c, reference) in
+            written.map(|c| (c, false)).chain(self.references().iter().map(|c| (c, true)))
+        {
             let mut s = format!("{}(id: {}", c.kind.name(), quote(&c.id));
             for (field, arg) in c.kind.fields().iter().zip(&c.args) {
                 let _ = write!(s, ", {field}: {}", quote(&self.entity(*arg).id));
             }
             if let Some(v) = &c.value {
                 let _ = write!(s, ", value: {}", format_exact(v));
+            }
+            if reference {
+                s.push_str(", reference: true");
             }
             let _ = writeln!(out, "        {s}),");
         }

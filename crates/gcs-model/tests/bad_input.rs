@@ -97,7 +97,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "unknown_field.ron",
-            "unknown_field.ron:3:31: RON syntax: Unexpected field named `att` in `Point`, expected either `id` or `at` instead",
+            "unknown_field.ron:3:31: RON syntax: Unexpected field named `att` in `Point`, expected one of `id`, `at`, or `construction` instead",
         ),
         (
             "unknown_variant.ron",
@@ -146,6 +146,10 @@ fn every_bad_file_has_its_message() {
         (
             "bspline_knots.ron",
             "bspline_knots.ron:5:20: entity \"s\": field knots: 5 knots where 6 are expected (control points + degree + 1)",
+        ),
+        (
+            "reference_not_dimension.ron",
+            "reference_not_dimension.ron:5:45: constraint \"h\": field reference: a reference (driven) Horizontal is not a dimension: only dimensions (Distance, Angle, Radius, DistanceX, DistanceY, LengthRatio) are measured",
         ),
         (
             "repeated_entity.ron",

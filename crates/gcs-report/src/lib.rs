@@ -35,6 +35,7 @@ mod check;
 pub mod clusters;
 mod error;
 mod import;
+pub mod measured;
 pub mod navigate;
 pub mod picture;
 mod report;

@@ -280,7 +280,14 @@ pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Ve
             _ => None,
         };
         if let Some(shape) = shape {
-            shapes = shapes.add(shape);
+            // Construction geometry: dashed and lighter, as CAD programs draw it.
+            shapes = if entity.construction {
+                let dash = format!("{} {}", 3.0 * line_width, 2.0 * line_width);
+                shapes
+                    .add(Group::new().set("stroke-dasharray", dash).set("opacity", 0.6).add(shape))
+            } else {
+                shapes.add(shape)
+            };
         }
     }
 

@@ -205,6 +205,10 @@ pub struct Report {
     /// `constraints`, `equations` or the DOF. Absent when there are none.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub orientations: usize,
+    /// The reference (driven) dimensions, measured at the drawing: no equations, not counted in
+    /// `constraints`. Absent when there are none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub measured: Vec<crate::measured::MeasuredReport>,
     /// Columns of the Jacobian.
     pub unknowns: usize,
     /// Rows of the Jacobian (entity-internal rows included).
@@ -434,6 +438,11 @@ impl Report {
             entities: system.written_entities(),
             constraints: system.written_constraints(),
             orientations: system.orientations().len(),
+            measured: {
+                let layout = gcs_jacobian::Layout::new(system);
+                let x = crate::measured::drawing(system, &layout);
+                crate::measured::measured(system, &layout, x.as_deref())
+            },
             unknowns: a.unknowns,
             equations: a.equations,
             rank: a.rank,
@@ -556,6 +565,14 @@ pub fn text_with_solution(
                 if n == 1 { "is" } else { "are" },
             ),
         );
+    }
+    if !system.references().is_empty() {
+        let layout = gcs_jacobian::Layout::new(system);
+        let x = crate::measured::drawing(system, &layout);
+        let measured = crate::measured::measured(system, &layout, x.as_deref());
+        if let Some(line) = crate::measured::measured_text(&measured, "at the drawing") {
+            push(&mut out, line);
+        }
     }
     let verdict = match (a.rigid(), a.redundant.is_empty()) {
         (true, true) => "well-constrained".to_owned(),

@@ -114,6 +114,9 @@ pub struct SolveReport {
     /// plan reaches turns their way (status `inconsistent`). Absent when every one holds.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub turned: Vec<String>,
+    /// The reference (driven) dimensions, measured at the solution. Absent when there are none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub measured: Vec<crate::measured::MeasuredReport>,
     /// The steps of the solve, in order.
     pub plan: Vec<PlanReport>,
     /// Closed-form choices reversed by backtracking.
@@ -283,6 +286,7 @@ impl SolveReport {
             redundant,
             no_solution,
             turned: solution.turned.iter().map(|k| system.orientations()[*k].id.clone()).collect(),
+            measured: crate::measured::measured(system, &layout, Some(&solution.x)),
             plan,
             backtracked: solution.backtracked,
             bound_hit: solution.bound_hit,
@@ -352,6 +356,10 @@ impl SolveReport {
             "  worst residual {:.1e} of the model's size {}; the drawing moved by {:.6} at most\n",
             self.max_residual, self.scale, self.moved
         ));
+        if let Some(line) = crate::measured::measured_text(&self.measured, "at the solution") {
+            out.push_str(&line);
+            out.push('\n');
+        }
         for n in &self.no_solution {
             out.push_str(&format!(
                 "  no real solution: {} cannot all hold (entities {}): change a value\n",
