@@ -274,6 +274,12 @@ impl Lowering {
         let weights = weights.map(|w| w.iter().map(|w| w.0.clone()).collect::<Vec<_>>());
         let weights =
             weights.filter(|w| w.iter().any(|w| *w != BigRational::from_integer(1.into())));
+        // Checked before its control points are made, so that a spline the model refuses
+        // leaves nothing behind.
+        gcs_model::spline::check(degree, poles.len(), Some(&flat), weights.as_deref(), periodic)
+            .map_err(|(field, what)| {
+                format!("a B-spline the model cannot hold: {field}: {what}")
+            })?;
         let clamped = gcs_model::spline::is_clamped(degree, poles.len(), Some(&flat), periodic);
         let n = poles.len();
         let ids: Vec<String> = (0..n).map(|i| pole_id(id, i, n, clamped)).collect();

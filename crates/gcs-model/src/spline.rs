@@ -22,9 +22,9 @@ use num_traits::{Signed, ToPrimitive, Zero};
 /// The largest degree accepted.
 pub const MAX_DEGREE: u32 = 32;
 
-/// Checks a B-spline's constants against its number of control points. On failure, the field
-/// at fault and what is wrong.
-pub(crate) fn check(
+/// Checks a B-spline's constants against its number of control points (what the model's
+/// reader and builder check). On failure, the field at fault and what is wrong.
+pub fn check(
     degree: u32,
     poles: usize,
     knots: Option<&[BigRational]>,
@@ -65,7 +65,7 @@ pub(crate) fn check(
             return Err(("knots", "the curve's parameter range is empty".into()));
         }
         // A knot repeated more than the degree (interior) breaks the curve in two.
-        let inner = if periodic { &k[..] } else { &k[1..k.len() - 1] };
+        let inner = if periodic { k } else { &k[1..k.len() - 1] };
         let mut run = 1;
         for w in inner.windows(2) {
             run = if w[0] == w[1] { run + 1 } else { 1 };
@@ -170,7 +170,8 @@ pub fn sample(
     }
     let dim = ctrl[0].0.len();
     let (lo, hi) = (t[p], t[m]);
-    if !(lo < hi) {
+    // (Also false for NaN knots.)
+    if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
         return Vec::new();
     }
     (0..=count)
