@@ -57,6 +57,16 @@ pub fn measured(system: &System, layout: &Layout, x: Option<&[f64]>) -> Vec<Meas
         .collect()
 }
 
+/// Every reference dimension measured at the drawing (nothing computed without references).
+pub fn at_drawing(system: &System) -> Vec<MeasuredReport> {
+    if system.references().is_empty() {
+        return Vec::new();
+    }
+    let layout = Layout::new(system);
+    let x = drawing(system, &layout);
+    measured(system, &layout, x.as_deref())
+}
+
 /// The text line of the measures (`None` without reference dimensions).
 pub fn measured_text(measured: &[MeasuredReport], at: &str) -> Option<String> {
     if measured.is_empty() {

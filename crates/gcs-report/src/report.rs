@@ -438,11 +438,7 @@ impl Report {
             entities: system.written_entities(),
             constraints: system.written_constraints(),
             orientations: system.orientations().len(),
-            measured: {
-                let layout = gcs_jacobian::Layout::new(system);
-                let x = crate::measured::drawing(system, &layout);
-                crate::measured::measured(system, &layout, x.as_deref())
-            },
+            measured: crate::measured::at_drawing(system),
             unknowns: a.unknowns,
             equations: a.equations,
             rank: a.rank,
@@ -566,13 +562,10 @@ pub fn text_with_solution(
             ),
         );
     }
-    if !system.references().is_empty() {
-        let layout = gcs_jacobian::Layout::new(system);
-        let x = crate::measured::drawing(system, &layout);
-        let measured = crate::measured::measured(system, &layout, x.as_deref());
-        if let Some(line) = crate::measured::measured_text(&measured, "at the drawing") {
-            push(&mut out, line);
-        }
+    if let Some(line) =
+        crate::measured::measured_text(&crate::measured::at_drawing(system), "at the drawing")
+    {
+        push(&mut out, line);
     }
     let verdict = match (a.rigid(), a.redundant.is_empty()) {
         (true, true) => "well-constrained".to_owned(),
