@@ -25,15 +25,7 @@ pub fn free_motions(system: &System, max_unknowns: usize) -> Option<Vec<Vec<f64>
     if n > max_unknowns {
         return None;
     }
-    let mut x = vec![Rat::zero(); n];
-    for e in system.entity_indices() {
-        if layout.repr(e).is_none() {
-            continue;
-        }
-        for (col, v) in layout.columns(e).zip(sketch::sketch_coords_in::<Rat>(system, e)?) {
-            x[col] = v;
-        }
-    }
+    let x = sketch::drawing_in::<Rat>(system, &layout)?;
     let sketch_in = |e: EntityIdx| sketch::sketch_coords_in::<Rat>(system, e);
     let plan = plan_anywhere(system, &layout, &x, &sketch_in);
     let j = assemble(system, &layout, &plan, &x, &sketch_in);

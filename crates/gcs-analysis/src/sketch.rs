@@ -106,20 +106,6 @@ pub struct SketchAnalysis {
     pub proof: Option<Proof>,
 }
 
-/// The drawing's coordinates, exactly, when every entity has a sketch position.
-fn sketch_coordinates(system: &System, layout: &Layout) -> Option<Vec<BigRational>> {
-    let mut x = vec![BigRational::zero(); layout.ncols()];
-    for e in system.entity_indices() {
-        if layout.repr(e).is_none() {
-            continue;
-        }
-        for (col, v) in layout.columns(e).zip(sketch::sketch_coords(system, e)?) {
-            x[col] = v;
-        }
-    }
-    Some(x)
-}
-
 /// The analysis of the drawing, beside the generic one (`generic`, `redundant`, `dof` at
 /// `witness`). `None` when some entity has no sketch position.
 pub(crate) fn analyse(
@@ -131,7 +117,7 @@ pub(crate) fn analyse(
     redundant: &[Redundancy],
     dof: usize,
 ) -> Result<Option<SketchAnalysis>, AnalysisError> {
-    let Some(x) = sketch_coordinates(system, layout) else { return Ok(None) };
+    let Some(x) = sketch::drawing_in::<BigRational>(system, layout) else { return Ok(None) };
     let (satisfied, largest_residual) = residuals(system, layout, &x);
     let mut out = SketchAnalysis {
         rank: generic.rank,

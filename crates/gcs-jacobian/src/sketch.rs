@@ -15,6 +15,22 @@ pub fn sketch_coords(system: &System, e: EntityIdx) -> Option<Vec<BigRational>> 
     Repr::of(entity.kind(), system.dim())?.from_sketch(&entity.geometry)
 }
 
+/// The drawing as a configuration over the layout's columns, in any field: every entity's
+/// sketch ([`sketch_coords`]); `None` when an entity with coordinates has no sketch position
+/// (or a number is not in the field).
+pub fn drawing_in<F: Field>(system: &System, layout: &crate::Layout) -> Option<Vec<F>> {
+    let mut x = vec![F::zero(); layout.ncols()];
+    for e in system.entity_indices() {
+        if layout.repr(e).is_none() {
+            continue;
+        }
+        for (col, v) in layout.columns(e).zip(sketch_coords_in::<F>(system, e)?) {
+            x[col] = v;
+        }
+    }
+    Some(x)
+}
+
 /// [`sketch_coords`] in any field.
 pub fn sketch_coords_in<F: Field>(system: &System, e: EntityIdx) -> Option<Vec<F>> {
     sketch_coords(system, e)?.iter().map(|q| F::from_rational(q).ok()).collect()

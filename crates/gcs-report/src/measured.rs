@@ -24,23 +24,6 @@ pub struct MeasuredReport {
     pub written: Option<f64>,
 }
 
-/// The drawing as a configuration over the system's layout, in floats (`None` when an entity
-/// with coordinates has no sketch position).
-pub fn drawing(system: &System, layout: &Layout) -> Option<Vec<f64>> {
-    let mut x = vec![0.0; layout.ncols()];
-    for e in system.entity_indices() {
-        let cols = layout.columns(e);
-        if cols.is_empty() {
-            continue;
-        }
-        let c = gcs_jacobian::sketch::sketch_coords(system, e)?;
-        for (slot, q) in x[cols].iter_mut().zip(&c) {
-            *slot = q.to_f64()?;
-        }
-    }
-    Some(x)
-}
-
 /// Every reference dimension measured at `x` (a configuration over the layout; `None`: not
 /// measured).
 pub fn measured(system: &System, layout: &Layout, x: Option<&[f64]>) -> Vec<MeasuredReport> {
@@ -63,7 +46,7 @@ pub fn at_drawing(system: &System) -> Vec<MeasuredReport> {
         return Vec::new();
     }
     let layout = Layout::new(system);
-    let x = drawing(system, &layout);
+    let x = gcs_jacobian::sketch::drawing_in::<f64>(system, &layout);
     measured(system, &layout, x.as_deref())
 }
 

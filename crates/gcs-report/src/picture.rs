@@ -54,10 +54,8 @@ fn anchor(system: &System, e: EntityIdx) -> Option<P> {
             let [p, _] = at.as_ref()?;
             xy(p)
         }
-        Geometry::BSpline { .. } => {
-            let curve = spline_points(system, e)?;
-            curve.get(curve.len() / 2).copied()
-        }
+        // Its middle control point.
+        Geometry::BSpline { poles, .. } => anchor(system, *poles.get(poles.len() / 2)?),
     }
 }
 
