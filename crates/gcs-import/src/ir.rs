@@ -306,7 +306,9 @@ pub enum Kind {
     PerpendicularAtEnds,
     /// `[curve, curve]`: equal length (two segments) or equal radius (two circles or arcs).
     Equal,
-    /// `[point, point, point or line]`: the first two are symmetric about the third.
+    /// `[point, point, point or line]`: the first two are symmetric about the third;
+    /// `[segment, segment, point or line]`: the carriers (infinite lines) of the first two are
+    /// symmetric about the third (a mirrored line).
     Symmetric,
     /// `[point, point]`, `[point, line]`, `[point, circle]` (to its boundary), `[line, line]`
     /// (parallel lines), `[circle, circle]` (between boundaries): `value` apart.
@@ -351,4 +353,11 @@ pub enum Kind {
     EqualLengthPointLineDistance,
     /// `[arc or circle]`: its arc length (an arc) or circumference is `value`.
     ArcLength,
+    /// `[point, point, point]`: the second is the first turned by `value` degrees,
+    /// counter-clockwise, about the third (an instance of a circular pattern).
+    Rotated,
+    /// `[point, point, point, point]`: the second minus the first equals the fourth minus the
+    /// third (an instance of a linear pattern, one step along a direction segment from its
+    /// start to its end).
+    Translated,
 }

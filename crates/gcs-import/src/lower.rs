@@ -124,6 +124,12 @@ struct Lowering {
     /// The reference dimension being lowered has no value in the file (it is driven: the CAD
     /// program computes it).
     reference_without_value: bool,
+    /// The moves of patterns made so far, by the coincidence classes of their points (and the
+    /// turn): a point that two listed elements share (a corner of two patterned segments) is
+    /// moved once, with the constraint that made it.
+    moves: std::collections::HashMap<Vec<String>, String>,
+    /// What was not imported because another constraint says it (see [`Sketch::notes`]).
+    notes: Vec<Skipped>,
 }
 
 /// Lowers a sketch into a gcs model. Never fails: what cannot be expressed is skipped with its
@@ -140,6 +146,8 @@ pub fn lower(sketch: &Sketch) -> Lowered {
         reference: Vec::new(),
         as_reference: false,
         reference_without_value: false,
+        moves: Default::default(),
+        notes: Vec::new(),
     };
     for entity in &sketch.entities {
         match l.entity(&entity.id, &entity.geometry) {
@@ -164,6 +172,7 @@ pub fn lower(sketch: &Sketch) -> Lowered {
     }
     l.find_joints(&sketch.constraints);
     let mut notes = sketch.notes.clone();
+    let mut said = std::mem::take(&mut l.notes);
     for c in &sketch.constraints {
         if !c.driving {
             // Measured, not imposed: a reference dimension of the model where it is one
@@ -184,7 +193,9 @@ pub fn lower(sketch: &Sketch) -> Lowered {
         if let Err(reason) = l.constraint(c) {
             l.skip(&c.id, reason);
         }
+        said.append(&mut l.notes);
     }
+    notes.extend(said);
     Lowered {
         system: l.builder.build(),
         label: sketch.label.clone(),
@@ -503,6 +514,160 @@ impl Lowering {
         )
     }
 
+    /// Two segments mirrored about a line or a point, their carriers symmetric: the mirror
+    /// images of the first's end points, `<id>#image-start` and `<id>#image-end` (points of
+    /// their own, drawn at the exact images of the drawn end points), are on the second. The
+    /// constraints: `Symmetric` of each end point and its image (`<id>`, `<id>#end`), and the
+    /// images on the second segment's carrier (`<id>#on-start`, `<id>#on-end`).
+    fn mirror_lines(&mut self, id: &str, t: &[Target]) -> Result<(), String> {
+        if t[0].shape != Some(Shape::Segment) {
+            return Err(not_in_model("the mirror image of an infinite line"));
+        }
+        if self.as_reference {
+            return Err("a reference dimension that is not one dimension of the model".into());
+        }
+        let (start, end) = self.ends(&t[0]);
+        let mut images = Vec::new();
+        for (point, name) in [(&start, "start"), (&end, "end")] {
+            let image = format!("{id}#image-{name}");
+            let at = self.mirrored_q(&point.id, &t[2]);
+            self.builder.point(&image, at).map_err(|e| e.to_string())?;
+            images.push(Target { id: image, class: Class::Point, shape: Some(Shape::Point) });
+        }
+        self.push_all(
+            id,
+            &[
+                (K::Symmetric, "", vec![&start, &images[0], &t[2]], None),
+                (K::Symmetric, "end", vec![&end, &images[1], &t[2]], None),
+                (K::Incident, "on-start", vec![&images[0], &t[1]], None),
+                (K::Incident, "on-end", vec![&images[1], &t[1]], None),
+            ],
+        )
+    }
+
+    /// A point turned about another by `degrees` (an instance of a circular pattern), where
+    /// the turn is rational: by 180°, the two symmetric about the pivot; by ±90°, the arms
+    /// from the pivot to the point and to its image (segments `<id>#arm` and
+    /// `<id>#arm-image`) perpendicular (`<id>`) and of equal length (`<id>#equal`); by 0°, the
+    /// two coincide. Other turns need the cosine or sine of the angle, irrational.
+    fn rotated(&mut self, id: &str, t: &[Target], degrees: BigRational) -> Result<(), String> {
+        let full = BigRational::from_integer(360.into());
+        let turn = &degrees - (&degrees / &full).floor() * &full;
+        let is = |d: i64| turn == BigRational::from_integer(d.into());
+        if is(0) {
+            self.push(K::Coincident, id, &[&t[0], &t[1]], None)
+        } else if is(180) {
+            self.push(K::Symmetric, id, &[&t[0], &t[1], &t[2]], None)
+        } else if is(90) || is(270) {
+            let mut arms = Vec::new();
+            for (point, name) in [(&t[0], "arm"), (&t[1], "arm-image")] {
+                let arm = format!("{id}#{name}");
+                self.builder.segment(&arm, &t[2].id, &point.id).map_err(|e| e.to_string())?;
+                arms.push(Target { id: arm, class: Class::Straight, shape: Some(Shape::Segment) });
+            }
+            self.push_all(
+                id,
+                &[
+                    (K::Perpendicular, "", vec![&arms[0], &arms[1]], None),
+                    (K::EqualLength, "equal", vec![&arms[0], &arms[1]], None),
+                ],
+            )
+        } else {
+            Err(not_in_model(&format!(
+                "a rotation by {}° (its cosine or sine is irrational)",
+                degrees.to_f64().unwrap_or(f64::NAN)
+            )))
+        }
+    }
+
+    /// A point moved as a direction segment goes from its start to its end (an instance of a
+    /// linear pattern): the point, its image and the segment's ends make a parallelogram,
+    /// whose diagonals share their midpoint `<id>#middle` (a point of its own, drawn at the
+    /// exact midpoint of the first diagonal): the point and the segment's end symmetric about
+    /// it (`<id>`), the image and the segment's start too (`<id>#image`). Linear, so regular
+    /// even where the step is zero.
+    fn translated(&mut self, id: &str, t: &[Target]) -> Result<(), String> {
+        if self.as_reference {
+            return Err("a reference dimension that is not one dimension of the model".into());
+        }
+        let middle = format!("{id}#middle");
+        let two = BigRational::from_integer(2.into());
+        let at = self
+            .point_q(&t[0].id)
+            .zip(self.point_q(&t[3].id))
+            .map(|(a, d)| a.iter().zip(&d).map(|(x, y)| (x + y) / &two).collect::<Vec<_>>());
+        self.builder.point(&middle, at).map_err(|e| e.to_string())?;
+        let m = Target { id: middle, class: Class::Point, shape: Some(Shape::Point) };
+        self.push_all(
+            id,
+            &[
+                (K::Symmetric, "", vec![&t[0], &t[3], &m], None),
+                (K::Symmetric, "image", vec![&t[1], &t[2], &m], None),
+            ],
+        )
+    }
+
+    /// Whether the move of a pattern's point (`Rotated` by `turn`, or `Translated`) on these
+    /// points is said already, up to the sketch's coincidences: then a note names the
+    /// constraint that says it.
+    fn said_before(&mut self, id: &str, t: &[Target], turn: Option<&BigRational>) -> bool {
+        let mut key: Vec<String> = t.iter().map(|x| self.root(&x.id)).collect();
+        key.extend(turn.map(|d| d.to_string()));
+        match self.moves.get(&key) {
+            Some(first) => {
+                self.notes.push(Skipped {
+                    item: id.to_owned(),
+                    reason: format!("a move of a pattern's point that `{first}` says already"),
+                });
+                true
+            }
+            None => {
+                self.moves.insert(key, id.to_owned());
+                false
+            }
+        }
+    }
+
+    /// A point's exact sketch position (a named centre: its curve's).
+    fn point_q(&self, id: &str) -> Option<Vec<BigRational>> {
+        let s = self.builder.system();
+        let e =
+            s.entity(s.entity_by_id(id).or_else(|| s.entity_by_id(id.strip_suffix(".center")?))?);
+        match &e.geometry {
+            gcs_model::Geometry::Point { at } => at.clone(),
+            gcs_model::Geometry::Circle { center, .. }
+            | gcs_model::Geometry::Arc { center, .. } => center.clone(),
+            _ => None,
+        }
+    }
+
+    /// The exact mirror image of point `id`'s sketch position about a line or a point.
+    fn mirrored_q(&self, id: &str, axis: &Target) -> Option<Vec<BigRational>> {
+        let p = self.point_q(id)?;
+        let two = BigRational::from_integer(2.into());
+        if axis.class == Class::Point {
+            let c = self.point_q(&axis.id)?;
+            return Some(c.iter().zip(&p).map(|(c, p)| c * &two - p).collect());
+        }
+        let s = self.builder.system();
+        let (a, b) = match &s.entity(s.entity_by_id(&axis.id)?).geometry {
+            gcs_model::Geometry::Segment { from, to } => {
+                (self.point_q(&s.entity(*from).id)?, self.point_q(&s.entity(*to).id)?)
+            }
+            gcs_model::Geometry::Line { at: Some([a, b]) } => (a.clone(), b.clone()),
+            _ => return None,
+        };
+        let d: Vec<BigRational> = b.iter().zip(&a).map(|(b, a)| b - a).collect();
+        let dd: BigRational = d.iter().map(|x| x * x).sum();
+        if dd == BigRational::from_integer(0.into()) {
+            return None;
+        }
+        let k: BigRational =
+            p.iter().zip(&a).zip(&d).map(|((p, a), d)| (p - a) * d).sum::<BigRational>() / dd;
+        // The foot of the perpendicular, then as far beyond it.
+        Some(p.iter().zip(&a).zip(&d).map(|((p, a), d)| (a + d * &k) * &two - p).collect())
+    }
+
     /// A point's sketch position in floats (a named centre: its curve's).
     fn point_f64(&self, id: &str) -> Option<Vec<f64>> {
         let s = self.builder.system();
@@ -602,6 +767,22 @@ impl Lowering {
             (Kind::Symmetric, [P, P, P | S]) => {
                 self.push(K::Symmetric, &c.id, &[&t[0], &t[1], &t[2]], None)
             }
+            (Kind::Symmetric, [S, S, P | S]) => self.mirror_lines(&c.id, t),
+            (Kind::Rotated, [P, P, P]) => {
+                let degrees = value()?;
+                if self.said_before(&c.id, t, Some(&degrees)) {
+                    return Ok(());
+                }
+                self.rotated(&c.id, t, degrees)
+            }
+            (Kind::Rotated, _) => unsupported("a rotated copy of something other than a point"),
+            (Kind::Translated, [P, P, P, P]) => {
+                if self.said_before(&c.id, t, None) {
+                    return Ok(());
+                }
+                self.translated(&c.id, t)
+            }
+            (Kind::Translated, _) => unsupported("a moved copy of something other than a point"),
             (Kind::Distance, [P, P] | [P, S] | [S, P] | [S, S] | [P, Class::Plane]) => {
                 let v = value()?;
                 self.push(K::Distance, &c.id, &[&t[0], &t[1]], Some(abs(v)))

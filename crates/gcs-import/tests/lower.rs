@@ -459,3 +459,106 @@ fn b_splines_lower_on_their_control_points() {
     let back = System::from_ron_str(&sys.to_ron(), None).unwrap();
     assert_eq!(back.to_ron(), sys.to_ron());
 }
+
+/// Patterns and mirrored segments lower into the equations they imply: a turn by 90° as
+/// perpendicular arms of equal length, by 180° as a symmetry about the pivot, a move along a
+/// direction segment as a parallelogram with a shared middle, a mirrored segment as the images
+/// of its end points on the other; a turn whose cosine is irrational is skipped, and a move said
+/// twice (a shared corner) is a note.
+#[test]
+fn patterns_and_mirrored_segments_lower_to_their_equations() {
+    let xy = |x: i64, y: i64| vec![n(x), n(y)];
+    let point = |id: &str, x: i64, y: i64| entity(id, Geometry::Point { at: xy(x, y) });
+    let segment = |id: &str, a: (i64, i64), b: (i64, i64)| {
+        entity(id, Geometry::Segment { start: xy(a.0, a.1), end: xy(b.0, b.1) })
+    };
+    let w = |id: &str| Ref::whole(id);
+    let (start, end) = (|id: &str| Ref::part(id, Part::Start), |id: &str| Ref::part(id, Part::End));
+    let s = sketch(
+        vec![
+            point("c", 0, 0),
+            point("a", 2, 1),
+            point("q90", -1, 2),
+            point("q180", -2, -1),
+            point("t0", 10, 10),
+            point("t1", 14, 10),
+            segment("d", (0, -5), (4, -5)),
+            segment("s1", (1, 1), (3, 2)),
+            segment("s2", (-1, 1), (-3, 2)),
+            segment("m", (0, 0), (0, 10)),
+        ],
+        vec![
+            constraint("r90", Kind::Rotated, vec![w("a"), w("q90"), w("c")], Some(90)),
+            constraint("r180", Kind::Rotated, vec![w("a"), w("q180"), w("c")], Some(-180)),
+            constraint("r60", Kind::Rotated, vec![w("a"), w("q90"), w("c")], Some(60)),
+            constraint("tr", Kind::Translated, vec![w("t0"), w("t1"), start("d"), end("d")], None),
+            constraint(
+                "again",
+                Kind::Translated,
+                vec![w("t0"), w("t1"), start("d"), end("d")],
+                None,
+            ),
+            constraint("mirror", Kind::Symmetric, vec![w("s1"), w("s2"), w("m")], None),
+        ],
+    );
+    let l = lower(&s);
+    let reasons: Vec<(&str, &str)> =
+        l.skipped.iter().map(|k| (k.item.as_str(), k.reason.as_str())).collect();
+    assert_eq!(reasons.len(), 1, "{reasons:?}");
+    assert_eq!(reasons[0].0, "r60");
+    assert!(reasons[0].1.contains("a rotation by 60°"), "{}", reasons[0].1);
+    assert_eq!(l.notes.len(), 1);
+    assert_eq!(l.notes[0].item, "again");
+    assert!(l.notes[0].reason.contains("`tr` says already"), "{}", l.notes[0].reason);
+
+    assert_eq!(
+        lowered(&l, "r90"),
+        (ConstraintKind::Perpendicular, strings(&["r90#arm", "r90#arm-image"]), None)
+    );
+    assert_eq!(lowered(&l, "r90#equal").0, ConstraintKind::EqualLength);
+    let sys = &l.system;
+    let ends = |id: &str| sys.segment_points(sys.entity_by_id(id).unwrap()).unwrap();
+    let name = |e: gcs_model::EntityIdx| sys.entity(e).id.clone();
+    let (p, q) = ends("r90#arm-image");
+    assert_eq!((name(p), name(q)), ("c".to_owned(), "q90".to_owned()));
+    assert_eq!(
+        lowered(&l, "r180"),
+        (ConstraintKind::Symmetric, strings(&["a", "q180", "c"]), None)
+    );
+    assert_eq!(
+        lowered(&l, "tr"),
+        (ConstraintKind::Symmetric, strings(&["t0", "d.end", "tr#middle"]), None)
+    );
+    assert_eq!(
+        lowered(&l, "tr#image"),
+        (ConstraintKind::Symmetric, strings(&["t1", "d.start", "tr#middle"]), None)
+    );
+    assert_eq!(lowered(&l, "mirror").1, strings(&["s1.start", "mirror#image-start", "m"]));
+    assert_eq!(
+        lowered(&l, "mirror#on-end"),
+        (ConstraintKind::Incident, strings(&["mirror#image-end", "s2"]), None)
+    );
+    // Helpers are drawn where the drawing puts them, exactly: the middle of t0 and d's end,
+    // the images of s1's ends across x = 0.
+    let at = |id: &str| match &sys.entity(sys.entity_by_id(id).unwrap()).geometry {
+        gcs_model::entity::Geometry::Point { at: Some(at) } => {
+            at.iter().map(gcs_model::number::format_exact).collect::<Vec<_>>()
+        }
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(at("tr#middle"), strings(&["7", "2.5"]));
+    assert_eq!(
+        (at("mirror#image-start"), at("mirror#image-end")),
+        (strings(&["-1", "1"]), strings(&["-3", "2"]))
+    );
+
+    // Unknowns: 14 points of the sketch (6 points, 4 segments: 28) and 3 helper points (6) =
+    // 34; equations: the turns 2 + 2, the move 4, the mirror 4 + 2 = 14, independent: 20 DOF
+    // with the 3 displacements.
+    let a = gcs_analysis::analyze(sys, &Default::default()).unwrap();
+    assert_eq!(a.rank - a.internal_equations, 14);
+    assert_eq!(a.dof + a.trivial_motions, 34 - 14);
+    assert!(a.redundant.is_empty());
+    let back = System::from_ron_str(&sys.to_ron(), None).unwrap();
+    assert_eq!(back.to_ron(), sys.to_ron());
+}

@@ -68,9 +68,8 @@ fn category(reason: &str) -> &'static str {
         ("skipped entity", "reference to a skipped entity"),
         ("has zero length", "zero-length line used as a line"),
         ("the variable", "expression with a variable"),
-        ("two lines mirrored", "mirrored lines"),
         ("offset curves", "offset"),
-        ("a pattern", "pattern"),
+        ("circular pattern", "circular pattern"),
         ("projection of type", "silhouette projection"),
         ("is not expressible", "combination not expressible"),
         ("interpolated spline", "interpolated spline"),
@@ -113,13 +112,30 @@ fn every_sample_file_reads_with_the_expected_totals() {
             .count()),
         247 + 15
     );
-    // 5,531 constraints in the files: 644 skipped, 4,887 read; 15 of these become two (two
-    // coincident circles, 14 mirrored circles: the second is `<id>#equal`), so 4,902.
+    // 5,531 constraints in the files: 596 skipped, 43 mirrors of segments said by the mirrors
+    // of their end points (notes), 4 patterns read as 115 moves of points (`<id>#<element>,
+    // <instance>`: 30 `Rotated`, 85 `Translated`, and 5 `#equal` radii), 4,888 others read;
+    // 15 of these become two (two coincident circles, 14 mirrored circles: the second is
+    // `<id>#equal`), so 4,888 + 15 + 115 + 5 = 5,023.
     assert_eq!(source_constraints, 5531);
-    assert_eq!(count(|s| s.constraints.len()), 4902);
-    assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#equal")).count()), 15);
-    assert_eq!(count(|s| s.skipped.len()), 15 + 644);
-    assert_eq!(count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 644, 5531);
+    assert_eq!(count(|s| s.constraints.len()), 5023);
+    assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#equal")).count()), 20);
+    let moves = count(|s| {
+        s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
+    });
+    assert_eq!(moves, 115);
+    assert_eq!(count(|s| s.skipped.len()), 15 + 596);
+    assert_eq!(count(|s| s.notes.len()), 43);
+    assert!(
+        sketches
+            .iter()
+            .flat_map(|s| &s.notes)
+            .all(|n| n.reason.starts_with("MIRROR of two segments"))
+    );
+    assert_eq!(
+        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 596 + 43 + 4,
+        5531
+    );
     // Sketches with nothing skipped: most others reference the sketch origin or model edges,
     // which SketchGraphs' files do not carry.
     assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 31);
@@ -133,9 +149,8 @@ fn every_sample_file_reads_with_the_expected_totals() {
         ("external geometry", 426),
         ("reference to a skipped entity", 53),
         ("zero-length line used as a line", 52),
-        ("mirrored lines", 44),
         ("offset", 43),
-        ("pattern", 11),
+        ("circular pattern", 7),
         ("interpolated spline", 10),
         ("combination not expressible", 8),
         ("text box", 4),
@@ -151,7 +166,8 @@ fn every_sample_file_reads_with_the_expected_totals() {
         }
     }
     assert_eq!(kinds["Coincident"], 1923);
-    assert_eq!(kinds["Symmetric"], 204);
+    assert_eq!(kinds["Symmetric"], 205);
+    assert_eq!((kinds["Rotated"], kinds["Translated"]), (30, 85));
     assert_eq!(kinds["Fix"], 69);
 }
 
@@ -573,7 +589,8 @@ fn each_constraint_type() {
         (Kind::Symmetric, vec![part("c1", Part::Center), part("c2", Part::Center), s3.clone()])
     );
     assert_eq!(c("k20#equal"), (Kind::Equal, vec![c1.clone(), c2.clone()]));
-    assert!(skipped(s, "k21").starts_with("MIRROR: two lines mirrored about a line"));
+    // Mirrored segments (their carriers), not said by mirrors of both their end points.
+    assert_eq!(c("k21"), (Kind::Symmetric, vec![s1.clone(), s2.clone(), s3.clone()]));
     assert_eq!(
         (c("k22"), v("k22")),
         ((Kind::Distance, vec![p1.clone(), p2.clone()]), Some(n("15")))
@@ -604,8 +621,29 @@ fn each_constraint_type() {
     assert_eq!(c("k34"), (Kind::Fix, vec![s4.clone()]));
     assert!(skipped(s, "k35").contains("SILHOUETTE_START"));
     assert!(skipped(s, "k36").starts_with("OFFSET:"));
-    assert!(skipped(s, "k37").starts_with("CIRCULAR_PATTERN:"));
-    assert!(skipped(s, "k38").starts_with("LINEAR_PATTERN:"));
+    assert_eq!(
+        skipped(s, "k37"),
+        "CIRCULAR_PATTERN: the pattern's count is not a positive integer"
+    );
+    // A linear pattern: each instance one step along s1 from the one before; an empty
+    // instance is not made.
+    let (s1_start, s1_end) = (part("s1", Part::Start), part("s1", Part::End));
+    let step = |a: &Ref, b: &Ref| vec![a.clone(), b.clone(), s1_start.clone(), s1_end.clone()];
+    assert_eq!(c("k38#0,1"), (Kind::Translated, step(&p1, &p2)));
+    assert_eq!(c("k38#0,2"), (Kind::Translated, step(&p2, &p4)));
+    assert!(s.constraints.iter().all(|x| x.id != "k38#0,3"));
+    // A closed circular pattern of 4: instance 2 is its seed turned by 180°; a circle's centre
+    // turns and its radius stays.
+    assert_eq!(
+        (c("k47#0,2"), v("k47#0,2")),
+        ((Kind::Rotated, vec![p1.clone(), p2.clone(), p3.clone()]), Some(n("180")))
+    );
+    assert_eq!(
+        c("k47#1,2"),
+        (Kind::Rotated, vec![part("c1", Part::Center), part("c2", Part::Center), p3.clone()])
+    );
+    assert_eq!(c("k47#1,2#equal"), (Kind::Equal, vec![c1.clone(), c2.clone()]));
+    assert!(skipped(s, "k48").contains("a circular pattern of 6 instances"));
     assert_eq!(skipped(s, "k39"), "PIERCE: this constraint type is not supported");
     assert_eq!(
         skipped(s, "k40"),
@@ -619,8 +657,9 @@ fn each_constraint_type() {
     assert_eq!(c("k45"), (Kind::Symmetric, vec![p1.clone(), p2.clone(), s3.clone()]));
     // s2 runs from x = 30 to x = 0.
     assert_eq!((c("k46"), v("k46")), ((Kind::DistanceX, vec![s2.clone()]), Some(n("-30"))));
-    assert_eq!(s.skipped.len(), 11);
-    assert_eq!(s.constraints.len(), 46 - 11 + 2);
+    assert_eq!(s.skipped.len(), 10);
+    // Two `#equal`s, and the patterns' second and third constraints.
+    assert_eq!(s.constraints.len(), 48 - 10 + 2 + 1 + 2);
 }
 
 #[test]

@@ -208,7 +208,10 @@ pub(super) fn read(
             );
         }
         "CIRCULAR_PATTERN" | "LINEAR_PATTERN" => {
-            return skip("a pattern (copies placed by a rotation or a translation, with counts) is not expressible".into());
+            return match pattern(ctype, &params, id, table, &Drawing { table, entities }) {
+                Ok(out) => Ok(Outcome::Constraints(out)),
+                Err(why) => skip(why),
+            };
         }
         _ if !KNOWN.contains(&ctype) => {
             return skip("this constraint type is not supported".into());
@@ -382,11 +385,8 @@ pub(super) fn read(
                     second("equal", Kind::Equal, vec![a.r.clone(), b.r.clone()]),
                 ]
             } else if a.is_line() && b.is_line() {
-                return skip(
-                    "two lines mirrored about a line (their carriers symmetric) are not expressible: the neutral \
-                     Symmetric takes points"
-                        .into(),
-                );
+                // Mirrored lines: their carriers symmetric.
+                vec![one(Kind::Symmetric, vec![a.r.clone(), b.r.clone(), m.r.clone()])]
             } else {
                 return unexpressible();
             }
@@ -484,6 +484,187 @@ pub(super) fn read(
         _ => return unexpressible(),
     };
     Ok(Outcome::Constraints(out))
+}
+
+/// A circular or linear pattern: each instance of each element is its seed (instance 0) turned
+/// about the pivot or moved along the directions, as `Rotated` / `Translated` constraints on
+/// their points, named `<id>#<element>,<instance>` (`#<element>,<i>,<j>` for a linear pattern in
+/// two directions; a circle's radius: `…#equal`, an `Equal`).
+///
+/// A closed circular pattern of N instances turns instance i by i·360°/N (its sense, as the
+/// drawing shows); instance (i, j) of a linear pattern is instance (i − 1, j) moved by the
+/// vector of `localDirection1` (from its start to its end), or (0, j − 1) by that of
+/// `localDirection2`. An element is a point, a segment (its end points), an arc (its centre and
+/// end points) or a circle (its centre, and an equal radius). Instances the file leaves empty
+/// are not made. Skipped whole: an open circular pattern (its angle is not in the file), a
+/// count that is not a positive integer, a circular pattern of other than 1, 2 or 4 instances
+/// (its turns are irrational), an element of another kind.
+fn pattern(
+    ctype: &str,
+    params: &Params<'_>,
+    id: &str,
+    table: &Table,
+    drawing: &Drawing<'_>,
+) -> Result<Vec<Constraint>, String> {
+    let circular = ctype == "CIRCULAR_PATTERN";
+    if circular && params.flag("openPattern") {
+        return Err(
+            "an open circular pattern: the angle between its instances is not in the file".into()
+        );
+    }
+    let resolve = |value: &str| match table.resolve(value) {
+        Target::Found(r, shape) => Ok(Arg { r, shape }),
+        Target::Unusable(why) => Err(why),
+    };
+    let local = |role: &str| params.refs.iter().find(|r| r.role == role).and_then(|r| r.local);
+    // The instances: element k, instance index (i or i, j) → reference.
+    let mut instances: std::collections::BTreeMap<(usize, usize, usize), &str> = Default::default();
+    for r in &params.refs {
+        let (Some(index), Some(value)) = (r.role.strip_prefix("localInstance"), r.local) else {
+            continue;
+        };
+        let parts: Option<Vec<usize>> = index.split(',').map(|x| x.parse().ok()).collect();
+        let key = match parts.as_deref() {
+            Some([k, i]) => (*k, *i, 0),
+            Some([k, i, j]) => (*k, *i, *j),
+            _ => return Err(format!("the instance parameter `{}` is not understood", r.role)),
+        };
+        if !value.is_empty() {
+            instances.insert(key, value);
+        }
+    }
+    let mut out = Vec::new();
+    let push = |out: &mut Vec<Constraint>, cid: String, kind: Kind, refs: Vec<Ref>, value| {
+        out.push(Constraint { id: cid, kind, refs, value, driving: true });
+    };
+    if circular {
+        let pivot = resolve(local("localPivot").ok_or("the pattern has no pivot")?)?;
+        let pivot = if pivot.is_point() {
+            pivot.r
+        } else if pivot.has_center() {
+            pivot.center()
+        } else {
+            return Err(format!("the pivot is a {}, not a point", describe(pivot.shape)));
+        };
+        let count = params
+            .quantity("patternc1")
+            .and_then(Number::parse)
+            .filter(|n| n.0.is_integer() && n.0 > BigRational::from_integer(0.into()))
+            .ok_or("the pattern's count is not a positive integer")?;
+        // Turns by multiples of 360°/N: rational (their cosines and sines) only for N = 1, 2
+        // or 4; the model has no exact constant for the others. Skipped whole, not in part.
+        if !(BigRational::from_integer(4.into()) / &count.0).is_integer() {
+            return Err(format!(
+                "a circular pattern of {} instances: turns by multiples of 360°/{}, whose cosines \
+                 or sines are irrational, are not in the gcs model yet (only 2 or 4 instances)",
+                count.0, count.0
+            ));
+        }
+        let step = BigRational::from_integer(360.into()) / count.0;
+        for (&(k, i, j), value) in &instances {
+            if i == 0 && j == 0 {
+                continue;
+            }
+            let seed = instances.get(&(k, 0, 0)).ok_or(format!("element {k} has no seed"))?;
+            let (seed, image) = (resolve(seed)?, resolve(value)?);
+            let pairs = element_points(&seed, &image)?;
+            let angle = &step * BigRational::from_integer(i.into());
+            // The sense the drawing shows (turning the first pair of points).
+            let sense = pairs
+                .first()
+                .and_then(|(s, q)| {
+                    let (c, s, q) =
+                        (drawing.position(&pivot)?, drawing.position(s)?, drawing.position(q)?);
+                    let a = angle.to_f64()?.to_radians();
+                    let miss = |a: f64| {
+                        let (u, v) = (s[0] - c[0], s[1] - c[1]);
+                        let t =
+                            [c[0] + a.cos() * u - a.sin() * v, c[1] + a.sin() * u + a.cos() * v];
+                        (t[0] - q[0]).hypot(t[1] - q[1])
+                    };
+                    Some(if miss(-a) < miss(a) { -1 } else { 1 })
+                })
+                .unwrap_or(1);
+            let angle = Number(angle * BigRational::from_integer(sense.into()));
+            for (n, (s, q)) in pairs.into_iter().enumerate() {
+                let cid =
+                    format!("{id}#{k},{i}{}", if n == 0 { String::new() } else { format!("#{n}") });
+                push(&mut out, cid, Kind::Rotated, vec![s, q, pivot.clone()], Some(angle.clone()));
+            }
+            if seed.shape == Shape::Circle {
+                let cid = format!("{id}#{k},{i}#equal");
+                push(&mut out, cid, Kind::Equal, vec![seed.r.clone(), image.r.clone()], None);
+            }
+        }
+    } else {
+        let direction = |role: &str| -> Result<Option<(Ref, Ref)>, String> {
+            let Some(d) = local(role) else { return Ok(None) };
+            let d = resolve(d)?;
+            if !d.is_segment() {
+                return Err(format!(
+                    "the direction `{role}` is a {}, not a segment",
+                    describe(d.shape)
+                ));
+            }
+            Ok(Some((Ref::part(d.r.entity.clone(), Part::Start), Ref::part(d.r.entity, Part::End))))
+        };
+        let directions = [direction("localDirection1")?, direction("localDirection2")?];
+        for (&(k, i, j), value) in &instances {
+            if i == 0 && j == 0 {
+                continue;
+            }
+            // One step from the previous instance along the first direction, or along the
+            // second from the first column.
+            let (previous, along) = if i > 0 { ((k, i - 1, j), 0) } else { ((k, 0, j - 1), 1) };
+            let Some((from, to)) = directions[along].clone() else {
+                return Err(format!(
+                    "instance {i},{j} needs the direction `localDirection{}`",
+                    along + 1
+                ));
+            };
+            let previous = instances
+                .get(&previous)
+                .ok_or(format!("instance {i},{j} of element {k} follows an empty instance"))?;
+            let (seed, image) = (resolve(previous)?, resolve(value)?);
+            let pairs = element_points(&seed, &image)?;
+            let name =
+                if directions[1].is_some() { format!("{k},{i},{j}") } else { format!("{k},{i}") };
+            for (n, (s, q)) in pairs.into_iter().enumerate() {
+                let cid =
+                    format!("{id}#{name}{}", if n == 0 { String::new() } else { format!("#{n}") });
+                push(&mut out, cid, Kind::Translated, vec![s, q, from.clone(), to.clone()], None);
+            }
+            if seed.shape == Shape::Circle {
+                let cid = format!("{id}#{name}#equal");
+                push(&mut out, cid, Kind::Equal, vec![seed.r.clone(), image.r.clone()], None);
+            }
+        }
+    }
+    // A point listed as an element of its own and as an end of a listed segment: once.
+    let mut seen = std::collections::HashSet::new();
+    out.retain(|c| c.kind == Kind::Equal || seen.insert((c.refs[0].clone(), c.refs[1].clone())));
+    Ok(out)
+}
+
+/// The pairs of points (seed, image) a patterned element moves: a point, a segment's end
+/// points, an arc's centre and end points, a circle's centre.
+fn element_points(seed: &Arg, image: &Arg) -> Result<Vec<(Ref, Ref)>, String> {
+    if seed.shape != image.shape && !(seed.is_point() && image.is_point()) {
+        return Err(format!(
+            "an instance is a {} where its seed is a {}",
+            describe(image.shape),
+            describe(seed.shape)
+        ));
+    }
+    let part = |a: &Arg, p: Part| Ref::part(a.r.entity.clone(), p);
+    let parts: &[Part] = match seed.shape {
+        Shape::Point | Shape::ZeroLine => return Ok(vec![(seed.r.clone(), image.r.clone())]),
+        Shape::Segment => &[Part::Start, Part::End],
+        Shape::Arc { .. } => &[Part::Center, Part::Start, Part::End],
+        Shape::Circle => &[Part::Center],
+        other => return Err(format!("a patterned {} is not expressible", describe(other))),
+    };
+    Ok(parts.iter().map(|&p| (part(seed, p), part(image, p))).collect())
 }
 
 fn level(ctype: &str) -> Kind {

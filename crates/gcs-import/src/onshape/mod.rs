@@ -43,7 +43,8 @@
 //! | EQUAL | two lines / two circles or arcs | `Equal` |
 //! | CONCENTRIC | circles, arcs / ellipses / a point and a circle | `Concentric` / `Coincident` of the centres / `Coincident` with the centre |
 //! | MIDPOINT | point, line or arc / midpoint, point, point | `Midpoint` / `Symmetric` about the midpoint |
-//! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) |
+//! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line / segment, segment, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) / `Symmetric` of the segments (their carriers), or a note when mirrors of both their end points about the same line say it |
+//! | CIRCULAR_PATTERN (closed), LINEAR_PATTERN | pivot or directions, instances `localInstance<k>,<i>[,<j>]` | `Rotated` by i·360°/N (the drawing's sense) / `Translated` by one step along a direction segment, per point of each instance (`<id>#<k>,<i>[,<j>]`), `Equal` radii of circles |
 //! | DISTANCE (direction MINIMUM) | point–point, point–line, line–line, point–circle, circle–circle | `Distance` |
 //! | DISTANCE (HORIZONTAL, VERTICAL) | point, point | `DistanceX`, `DistanceY`, signed as the drawing shows |
 //! | LENGTH | line | `Length` (or `DistanceX`/`DistanceY` with a direction) |
@@ -53,8 +54,8 @@
 //! | CENTERLINE_DIMENSION | centreline, point or line | `Distance` of half the value |
 //! | PROJECTED (USE, USE_END, USE_START) | a sketch entity or point and model geometry | `Fix` of the sketch entity (it is drawn on the projection) |
 //!
-//! Skipped, with the reason: OFFSET, CIRCULAR_PATTERN, LINEAR_PATTERN, silhouette projections,
-//! other types; mirrored lines (the neutral `Symmetric` takes points); a line–circle distance;
+//! Skipped, with the reason: OFFSET, open circular patterns (their angle is not in the file),
+//! silhouette projections, other types; a line–circle distance;
 //! anything with a reference to external geometry ("reference to external geometry without its
 //! geometry in the file"); a reference to a skipped entity or to an unknown id; a zero-length
 //! line used as a line; a driving dimension whose expression cannot be evaluated (variables).
@@ -188,5 +189,60 @@ fn read_sketch(
             Outcome::Skip(skipped) => sketch.skipped.push(skipped),
         }
     }
+    fold_implied_mirrors(&mut sketch);
     Ok(sketch)
+}
+
+/// Onshape's mirror tool writes, beside the mirror of two segments (their carriers), the
+/// mirrors of their end points about the same line, which imply it: such a mirror of segments
+/// becomes a note ("said by the mirrors of its end points"), not two more equations that would
+/// only be redundant.
+fn fold_implied_mirrors(sketch: &mut ir::Sketch) {
+    use ir::{Kind, Part, Ref};
+    let segments: std::collections::HashSet<&str> = sketch
+        .entities
+        .iter()
+        .filter(|e| matches!(e.geometry, ir::Geometry::Segment { .. }))
+        .map(|e| e.id.as_str())
+        .collect();
+    let is_segment = |r: &Ref| r.part == Part::Whole && segments.contains(r.entity.as_str());
+    // The mirrored pairs of points, each with its axis and the constraint saying it.
+    let mut pairs: std::collections::HashMap<(Ref, Ref, Ref), String> = Default::default();
+    for c in &sketch.constraints {
+        if let (Kind::Symmetric, [a, b, axis]) = (c.kind, c.refs.as_slice())
+            && !is_segment(a)
+        {
+            pairs.insert((a.clone(), b.clone(), axis.clone()), c.id.clone());
+            pairs.insert((b.clone(), a.clone(), axis.clone()), c.id.clone());
+        }
+    }
+    let mut notes = Vec::new();
+    sketch.constraints.retain(|c| {
+        let (Kind::Symmetric, [a, b, axis]) = (c.kind, c.refs.as_slice()) else { return true };
+        if !(is_segment(a) && is_segment(b)) {
+            return true;
+        }
+        let end = |r: &Ref, p: Part| Ref::part(r.entity.clone(), p);
+        let said = |p: Part, q: Part| pairs.get(&(end(a, p), end(b, q), axis.clone()));
+        let by = [(Part::Start, Part::Start), (Part::End, Part::End)]
+            .map(|(p, q)| said(p, q))
+            .into_iter()
+            .collect::<Option<Vec<_>>>()
+            .or_else(|| {
+                [(Part::Start, Part::End), (Part::End, Part::Start)]
+                    .map(|(p, q)| said(p, q))
+                    .into_iter()
+                    .collect::<Option<Vec<_>>>()
+            });
+        let Some(by) = by else { return true };
+        notes.push(ir::Skipped {
+            item: c.id.clone(),
+            reason: format!(
+                "MIRROR of two segments: said by the mirrors of their end points (`{}`, `{}`)",
+                by[0], by[1]
+            ),
+        });
+        false
+    });
+    sketch.notes.extend(notes);
 }
