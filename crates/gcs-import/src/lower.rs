@@ -853,9 +853,12 @@ impl Lowering {
             (Kind::LengthRatio, _) => unsupported("a ratio of lengths of arcs or infinite lines"),
             (Kind::LengthDifference, _) => unsupported("a difference of lengths"),
             (Kind::EqualLineArcLength, _) => unsupported("a segment as long as an arc"),
-            // (The model's EqualDistance states both; lowered, they leave the constructive
-            // placement loops it cannot close yet where other constraints tie the same
-            // lengths, so they stay skipped until it can.)
+            // (The model's EqualDistance states a length equal to a point–line distance too;
+            // lowered, it leaves loops beside other equal lengths that the placement does not
+            // close yet — SolveSpace's `mapping2d` test file —, so it stays skipped.)
+            (Kind::EqualPointLineDistances, [P, S, P, S]) => {
+                self.push(K::EqualDistance, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
+            }
             (Kind::EqualPointLineDistances, _) => unsupported("equal point–line distances"),
             (Kind::EqualLengthPointLineDistance, _) => {
                 unsupported("a length equal to a point–line distance")

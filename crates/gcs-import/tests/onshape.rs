@@ -68,7 +68,7 @@ fn category(reason: &str) -> &'static str {
         ("skipped entity", "reference to a skipped entity"),
         ("has zero length", "zero-length line used as a line"),
         ("the variable", "expression with a variable"),
-        ("offset curves", "offset"),
+        ("OFFSET: ", "offset"),
         ("circular pattern", "circular pattern"),
         ("projection of type", "silhouette projection"),
         ("is not expressible", "combination not expressible"),
@@ -112,19 +112,21 @@ fn every_sample_file_reads_with_the_expected_totals() {
             .count()),
         247 + 15
     );
-    // 5,531 constraints in the files: 596 skipped, 43 mirrors of segments said by the mirrors
+    // 5,531 constraints in the files: 565 skipped, 43 mirrors of segments said by the mirrors
     // of their end points (notes), 4 patterns read as 115 moves of points (`<id>#<element>,
-    // <instance>`: 30 `Rotated`, 85 `Translated`, and 5 `#equal` radii), 4,888 others read;
-    // 15 of these become two (two coincident circles, 14 mirrored circles: the second is
-    // `<id>#equal`), so 4,888 + 15 + 115 + 5 = 5,023.
+    // <instance>`: 30 `Rotated`, 85 `Translated`, and 5 `#equal` radii), 31 offsets read as 44
+    // parallelisms or concentricities of their pairs of curves (`#master`, `#second`) and, for
+    // 28 of them, equal gaps (`EqualPointLineDistances`, the id), 4,888 others read; 15 of these
+    // become two (two coincident circles, 14 mirrored circles: the second is `<id>#equal`), so
+    // 4,888 + 15 + 115 + 5 + 44 + 28 = 5,095.
     assert_eq!(source_constraints, 5531);
-    assert_eq!(count(|s| s.constraints.len()), 5023);
+    assert_eq!(count(|s| s.constraints.len()), 5095);
     assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#equal")).count()), 20);
     let moves = count(|s| {
         s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
     });
     assert_eq!(moves, 115);
-    assert_eq!(count(|s| s.skipped.len()), 15 + 596);
+    assert_eq!(count(|s| s.skipped.len()), 15 + 565);
     assert_eq!(count(|s| s.notes.len()), 43);
     assert!(
         sketches
@@ -133,12 +135,12 @@ fn every_sample_file_reads_with_the_expected_totals() {
             .all(|n| n.reason.starts_with("MIRROR of two segments"))
     );
     assert_eq!(
-        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 596 + 43 + 4,
+        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 565 + 43 + 4 + 3,
         5531
     );
     // Sketches with nothing skipped: most others reference the sketch origin or model edges,
     // which SketchGraphs' files do not carry.
-    assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 31);
+    assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 33);
     let mut reasons = BTreeMap::new();
     for s in &sketches {
         for k in &s.skipped {
@@ -149,7 +151,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
         ("external geometry", 426),
         ("reference to a skipped entity", 53),
         ("zero-length line used as a line", 52),
-        ("offset", 43),
+        ("offset", 12),
         ("circular pattern", 7),
         ("interpolated spline", 10),
         ("combination not expressible", 8),
@@ -168,6 +170,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
     assert_eq!(kinds["Coincident"], 1923);
     assert_eq!(kinds["Symmetric"], 205);
     assert_eq!((kinds["Rotated"], kinds["Translated"]), (30, 85));
+    assert_eq!(kinds["EqualPointLineDistances"], 28);
     assert_eq!(kinds["Fix"], 69);
 }
 
@@ -620,7 +623,26 @@ fn each_constraint_type() {
     );
     assert_eq!(c("k34"), (Kind::Fix, vec![s4.clone()]));
     assert!(skipped(s, "k35").contains("SILHOUETTE_START"));
-    assert!(skipped(s, "k36").starts_with("OFFSET:"));
+    // Offsets: a curve and its offset parallel (concentric for circles); with a second pair,
+    // that pair too, and the offsets' starts as far from their curves. The first pair's
+    // relation is stated once for all the offsets of one operation.
+    assert_eq!(c("k36#master"), (Kind::Parallel, vec![s1.clone(), s2.clone()]));
+    assert_eq!(c("k49#master"), (Kind::Parallel, vec![s3.clone(), s4.clone()]));
+    assert_eq!(c("k49#second"), (Kind::Parallel, vec![s1.clone(), s2.clone()]));
+    assert_eq!(
+        c("k49"),
+        (
+            Kind::EqualPointLineDistances,
+            vec![part("s4", Part::Start), s3.clone(), part("s2", Part::Start), s1.clone()]
+        )
+    );
+    assert_eq!(
+        skipped(s, "k50"),
+        "OFFSET: equal offsets of circles (differences of radii) are not in the gcs model yet"
+    );
+    assert!(s.constraints.iter().all(|x| x.id != "k51#master"), "said by k49#master");
+    assert_eq!(c("k51#second"), (Kind::Parallel, vec![s2.clone(), s1.clone()]));
+    assert_eq!(c("k51").1[2], part("s1", Part::Start));
     assert_eq!(
         skipped(s, "k37"),
         "CIRCULAR_PATTERN: the pattern's count is not a positive integer"
@@ -658,8 +680,9 @@ fn each_constraint_type() {
     // s2 runs from x = 30 to x = 0.
     assert_eq!((c("k46"), v("k46")), ((Kind::DistanceX, vec![s2.clone()]), Some(n("-30"))));
     assert_eq!(s.skipped.len(), 10);
-    // Two `#equal`s, and the patterns' second and third constraints.
-    assert_eq!(s.constraints.len(), 48 - 10 + 2 + 1 + 2);
+    // Two `#equal`s, the patterns' second and third constraints, the offsets' second and
+    // third (k51's first pair said by k49).
+    assert_eq!(s.constraints.len(), 51 - 10 + 2 + 1 + 2 + 2 + 1);
 }
 
 #[test]

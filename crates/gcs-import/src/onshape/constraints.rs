@@ -203,9 +203,10 @@ pub(super) fn read(
     };
     match ctype {
         "OFFSET" => {
-            return skip(
-                "offset curves (a curve at a distance from another) are not expressible".into(),
-            );
+            return match offset(&params, id, table) {
+                Ok(out) => Ok(Outcome::Constraints(out)),
+                Err(why) => skip(why),
+            };
         }
         "CIRCULAR_PATTERN" | "LINEAR_PATTERN" => {
             return match pattern(ctype, &params, id, table, &Drawing { table, entities }) {
@@ -643,6 +644,68 @@ fn pattern(
     // A point listed as an element of its own and as an end of a listed segment: once.
     let mut seen = std::collections::HashSet::new();
     out.retain(|c| c.kind == Kind::Equal || seen.insert((c.refs[0].clone(), c.refs[1].clone())));
+    Ok(out)
+}
+
+/// An offset: a curve and its offset (`localMaster`, `localOffset`, or `local2`, `local0`) are
+/// parallel lines or concentric circles (`<id>#master`); with a second pair (`localSecond`,
+/// `localSecondOffset`, or `local3`, `local1`), that pair is too (`<id>#second`) and its gap is
+/// the first's: for lines, the distance from the offset's start to its curve is the same in
+/// both pairs (`EqualPointLineDistances`, the id). The first pair is shared by every offset of
+/// one operation: its relation is stated once ([`super::fold_repeated_offsets`]). Skipped: a
+/// gap between circles (a difference of radii, not in the gcs model), an offset of an infinite
+/// line.
+fn offset(params: &Params<'_>, id: &str, table: &Table) -> Result<Vec<Constraint>, String> {
+    let local = |roles: [&str; 2]| {
+        params.refs.iter().find(|r| roles.contains(&r.role)).and_then(|r| r.local)
+    };
+    let resolve = |value: &str| match table.resolve(value) {
+        Target::Found(r, shape) => Ok(Arg { r, shape }),
+        Target::Unusable(why) => Err(why),
+    };
+    let pair = |curve: [&str; 2], offset: [&str; 2]| -> Result<Option<(Arg, Arg)>, String> {
+        match (local(curve), local(offset)) {
+            (Some(c), Some(o)) => Ok(Some((resolve(c)?, resolve(o)?))),
+            (None, None) => Ok(None),
+            _ => Err("an offset without its curve or without its offset curve".into()),
+        }
+    };
+    let first = pair(["localMaster", "local2"], ["localOffset", "local0"])?
+        .ok_or("an offset without its curves")?;
+    let second = pair(["localSecond", "local3"], ["localSecondOffset", "local1"])?;
+    let relation = |(c, o): &(Arg, Arg)| -> Result<(Kind, Vec<Ref>), String> {
+        if c.is_line() && o.is_line() {
+            Ok((Kind::Parallel, vec![c.r.clone(), o.r.clone()]))
+        } else if c.is_round() && o.is_round() {
+            Ok((Kind::Concentric, vec![c.r.clone(), o.r.clone()]))
+        } else {
+            Err(format!("an offset of a {} as a {}", describe(c.shape), describe(o.shape)))
+        }
+    };
+    let constraint = |cid: String, (kind, refs): (Kind, Vec<Ref>)| Constraint {
+        id: cid,
+        kind,
+        refs,
+        value: None,
+        driving: true,
+    };
+    let mut out = vec![constraint(format!("{id}#master"), relation(&first)?)];
+    let Some(second) = second else { return Ok(out) };
+    out.push(constraint(format!("{id}#second"), relation(&second)?));
+    let gap = |(c, o): &(Arg, Arg)| -> Result<(Ref, Ref), String> {
+        if !(c.is_line() && o.is_line()) {
+            return Err(
+                "equal offsets of circles (differences of radii) are not in the gcs model yet"
+                    .into(),
+            );
+        }
+        if !o.is_segment() {
+            return Err("an offset that is an infinite line (no point of its own)".into());
+        }
+        Ok((Ref::part(o.r.entity.clone(), Part::Start), c.r.clone()))
+    };
+    let ((p, l), (q, m)) = (gap(&first)?, gap(&second)?);
+    out.push(constraint(id.to_owned(), (Kind::EqualPointLineDistances, vec![p, l, q, m])));
     Ok(out)
 }
 

@@ -44,6 +44,7 @@
 //! | CONCENTRIC | circles, arcs / ellipses / a point and a circle | `Concentric` / `Coincident` of the centres / `Coincident` with the centre |
 //! | MIDPOINT | point, line or arc / midpoint, point, point | `Midpoint` / `Symmetric` about the midpoint |
 //! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line / segment, segment, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) / `Symmetric` of the segments (their carriers), or a note when mirrors of both their end points about the same line say it |
+//! | OFFSET | curve, offset (`localMaster`, `localOffset` or `local2`, `local0`) [, second curve, its offset (`localSecond`, `localSecondOffset` or `local3`, `local1`)] | `Parallel` / `Concentric` of each pair (`<id>#master`, once per operation; `<id>#second`), and for lines `EqualPointLineDistances` from the offsets' starts (the id); equal offsets of circles skipped |
 //! | CIRCULAR_PATTERN (closed), LINEAR_PATTERN | pivot or directions, instances `localInstance<k>,<i>[,<j>]` | `Rotated` by i·360°/N (the drawing's sense) / `Translated` by one step along a direction segment, per point of each instance (`<id>#<k>,<i>[,<j>]`), `Equal` radii of circles |
 //! | DISTANCE (direction MINIMUM) | point–point, point–line, line–line, point–circle, circle–circle | `Distance` |
 //! | DISTANCE (HORIZONTAL, VERTICAL) | point, point | `DistanceX`, `DistanceY`, signed as the drawing shows |
@@ -54,7 +55,8 @@
 //! | CENTERLINE_DIMENSION | centreline, point or line | `Distance` of half the value |
 //! | PROJECTED (USE, USE_END, USE_START) | a sketch entity or point and model geometry | `Fix` of the sketch entity (it is drawn on the projection) |
 //!
-//! Skipped, with the reason: OFFSET, open circular patterns (their angle is not in the file),
+//! Skipped, with the reason: equal offsets of circles, open circular patterns (their angle is
+//! not in the file), circular patterns of other than 2 or 4 instances,
 //! silhouette projections, other types; a line–circle distance;
 //! anything with a reference to external geometry ("reference to external geometry without its
 //! geometry in the file"); a reference to a skipped entity or to an unknown id; a zero-length
@@ -190,7 +192,18 @@ fn read_sketch(
         }
     }
     fold_implied_mirrors(&mut sketch);
+    fold_repeated_offsets(&mut sketch);
     Ok(sketch)
+}
+
+/// The offsets of one operation each restate the relation of its first pair of curves (parallel
+/// or concentric, `<id>#master`): it is kept once, where it is first stated (the others are
+/// parts of constraints that are imported, not items of the sketch).
+pub(super) fn fold_repeated_offsets(sketch: &mut ir::Sketch) {
+    let mut seen = std::collections::HashSet::new();
+    sketch
+        .constraints
+        .retain(|c| !c.id.ends_with("#master") || seen.insert((c.kind, c.refs.clone())));
 }
 
 /// Onshape's mirror tool writes, beside the mirror of two segments (their carriers), the
