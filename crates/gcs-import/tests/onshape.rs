@@ -101,32 +101,34 @@ fn every_sample_file_reads_with_the_expected_totals() {
     }
     let count = |f: fn(&Sketch) -> usize| sketches.iter().map(f).sum::<usize>();
     assert_eq!(sketches.len(), 237);
-    // 2,481 entities in the files, of which 15 are skipped: 10 interpolated splines, 4 text boxes
-    // and 1 image box. The 15 zero-length lines are among the 2,466, as points.
-    assert_eq!(count(|s| s.entities.len()), 2466);
+    // 2,481 entities in the files, of which 10 are skipped (interpolated splines) and 5 are
+    // boxes (4 text boxes, 1 image box) read as 5 entities each (4 edges, a centre): 2,491. The
+    // 15 zero-length lines are among them, as points.
+    assert_eq!(count(|s| s.entities.len()), 2491);
     assert_eq!(
         count(|s| s
             .entities
             .iter()
             .filter(|e| matches!(e.geometry, Geometry::Point { .. }))
             .count()),
-        247 + 15
+        247 + 15 + 5
     );
-    // 5,531 constraints in the files: 565 skipped, 43 mirrors of segments said by the mirrors
+    // 5,531 constraints in the files: 554 skipped, 43 mirrors of segments said by the mirrors
     // of their end points (notes), 4 patterns read as 115 moves of points (`<id>#<element>,
     // <instance>`: 30 `Rotated`, 85 `Translated`, and 5 `#equal` radii), 31 offsets read as 44
     // parallelisms or concentricities of their pairs of curves (`#master`, `#second`) and, for
-    // 28 of them, equal gaps (`EqualPointLineDistances`, the id), 4,888 others read; 15 of these
-    // become two (two coincident circles, 14 mirrored circles: the second is `<id>#equal`), so
-    // 4,888 + 15 + 115 + 5 + 44 + 28 = 5,095.
+    // 28 of them, equal gaps (`EqualPointLineDistances`, the id), 4,899 others read; 15 of these
+    // become two (two coincident circles, 14 mirrored circles: the second is `<id>#equal`); the
+    // 5 boxes add 9 constraints each (`<id>#corner1`…): 4,899 + 15 + 115 + 5 + 44 + 28 + 45 =
+    // 5,151.
     assert_eq!(source_constraints, 5531);
-    assert_eq!(count(|s| s.constraints.len()), 5095);
+    assert_eq!(count(|s| s.constraints.len()), 5151);
     assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#equal")).count()), 20);
     let moves = count(|s| {
         s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
     });
     assert_eq!(moves, 115);
-    assert_eq!(count(|s| s.skipped.len()), 15 + 565);
+    assert_eq!(count(|s| s.skipped.len()), 10 + 554);
     assert_eq!(count(|s| s.notes.len()), 43);
     assert!(
         sketches
@@ -135,12 +137,12 @@ fn every_sample_file_reads_with_the_expected_totals() {
             .all(|n| n.reason.starts_with("MIRROR of two segments"))
     );
     assert_eq!(
-        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 565 + 43 + 4 + 3,
+        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 554 + 43 + 4 + 3,
         5531
     );
     // Sketches with nothing skipped: most others reference the sketch origin or model edges,
     // which SketchGraphs' files do not carry.
-    assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 33);
+    assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 34);
     let mut reasons = BTreeMap::new();
     for s in &sketches {
         for k in &s.skipped {
@@ -149,16 +151,14 @@ fn every_sample_file_reads_with_the_expected_totals() {
     }
     let expected = BTreeMap::from([
         ("external geometry", 426),
-        ("reference to a skipped entity", 53),
+        ("reference to a skipped entity", 42),
         ("zero-length line used as a line", 52),
         ("offset", 12),
         ("circular pattern", 7),
         ("interpolated spline", 10),
         ("combination not expressible", 8),
-        ("text box", 4),
         ("silhouette projection", 4),
         ("expression with a variable", 3),
-        ("image box", 1),
     ]);
     assert_eq!(reasons, expected);
     let mut kinds = BTreeMap::new();
@@ -167,8 +167,8 @@ fn every_sample_file_reads_with_the_expected_totals() {
             *kinds.entry(format!("{:?}", c.kind)).or_insert(0) += 1;
         }
     }
-    assert_eq!(kinds["Coincident"], 1923);
-    assert_eq!(kinds["Symmetric"], 205);
+    assert_eq!(kinds["Coincident"], 1945);
+    assert_eq!(kinds["Symmetric"], 210);
     assert_eq!((kinds["Rotated"], kinds["Translated"]), (30, 85));
     assert_eq!(kinds["EqualPointLineDistances"], 28);
     assert_eq!(kinds["Fix"], 69);
@@ -245,12 +245,12 @@ fn the_sample_drawings_satisfy_the_constraints_read() {
     }
     let expected = [
         ("Angle", 18),
-        ("Coincident", 1923),
+        ("Coincident", 1945),
         ("Distance", 27),
         ("DistanceX", 49),
         ("DistanceY", 29),
         ("Horizontal", 71),
-        ("Symmetric", 93),
+        ("Symmetric", 98),
         ("Vertical", 50),
     ];
     assert_eq!(checked, expected.into_iter().map(|(k, v)| (k.to_owned(), v)).collect());
@@ -494,7 +494,34 @@ fn each_entity_type() {
     assert!(s[1].entities.is_empty() && s[1].skipped.is_empty());
     let s = &s[0];
     let ids: Vec<&str> = s.entities.iter().map(|e| e.id.as_str()).collect();
-    assert_eq!(ids, ["p1", "s1", "z1", "l1", "c1", "a1", "a2", "e1", "e2", "e3", "b1"]);
+    fn boxes(id: &str, kind: &str, edges: [&str; 4]) -> Vec<String> {
+        edges.into_iter().chain(["center"]).map(|e| format!("{id}.{kind}.{e}")).collect()
+    }
+    let mut expected: Vec<String> =
+        ["p1", "s1", "z1", "l1", "c1", "a1", "a2", "e1", "e2", "e3", "b1"]
+            .map(str::to_owned)
+            .into();
+    expected.extend(boxes("t1", "sketch_text", ["baseline", "ascent", "left", "right"]));
+    expected.extend(boxes("m1", "sketch_image", ["bottom", "top", "left", "right"]));
+    assert_eq!(ids, expected);
+    // A text box: the rectangle on its baseline (10 mm) up to its ascent (4 mm), its proportions
+    // kept; an image box: its aspect ratio (1.5) over its x axis.
+    assert_eq!(
+        entity(s, "t1.sketch_text.ascent").geometry,
+        Geometry::Segment { start: at("0", "4"), end: at("10", "4") }
+    );
+    assert_eq!(entity(s, "t1.sketch_text.center").geometry, Geometry::Point { at: at("5", "2") });
+    assert_eq!(constraint(s, "t1#ratio").value, Some(n("0.4")));
+    assert_eq!(
+        constraint(s, "t1#corner3").refs,
+        [part("t1.sketch_text.ascent", Part::Start), part("t1.sketch_text.left", Part::End)]
+    );
+    assert_eq!(
+        entity(s, "m1.sketch_image.right").geometry,
+        Geometry::Segment { start: at("10", "0"), end: at("10", "15") }
+    );
+    assert_eq!(constraint(s, "m1#ratio").value, Some(n("1.5")));
+    assert_eq!(s.constraints.len(), 2 * 9);
     assert_eq!(entity(s, "p1").geometry, Geometry::Point { at: at("10", "20") });
     assert_eq!(
         entity(s, "s1").geometry,
@@ -542,14 +569,12 @@ fn each_entity_type() {
         ("b2", "trimmed"),
         ("b3", "periodic"),
         ("i1", "interpolated spline"),
-        ("t1", "text box"),
-        ("m1", "image box"),
         ("x1", "BTCurveGeometryConic"),
         ("u1", "BTMSketchSomethingNew"),
     ] {
         assert!(skipped(s, id).contains(why), "{id}: {}", skipped(s, id));
     }
-    assert_eq!(s.skipped.len(), 7);
+    assert_eq!(s.skipped.len(), 5);
 }
 
 #[test]

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use num_rational::BigRational;
 
 use super::json::{self, Object};
-use crate::ir::{self, Coords, Geometry, Number, Part, Ref};
+use crate::ir::{self, Coords, Geometry, Kind, Number, Part, Ref};
 
 /// A line whose parameter range is at most this long (in metres, 1e-9 mm) has zero length: it is
 /// read as a point. Onshape leaves such lines behind when fillets consume a whole side; their end
@@ -44,6 +44,9 @@ pub(super) enum Read {
     Entity(ir::Entity, Shape),
     /// An entity that cannot be expressed, with the reason.
     Skip(String),
+    /// An entity that is several of the neutral sketch's, held together by constraints (a text
+    /// or image box: a rectangle of four segments and its centre).
+    Composite(Vec<(ir::Entity, Shape)>, Vec<ir::Constraint>),
 }
 
 /// Reads one entity whose `message` is `msg` (the id has been read by the caller).
@@ -81,14 +84,119 @@ pub(super) fn read(type_name: &str, msg: &Object, id: &str) -> Result<Read, Stri
                 other => Ok(Read::Skip(format!("curve geometry {other} is not supported"))),
             }
         }
-        "BTMSketchTextEntity" => Ok(Read::Skip(
-            "text box (BTMSketchTextEntity): its outline depends on the font and the text, not expressible".into(),
-        )),
-        "BTMSketchImageEntity" => Ok(Read::Skip(
-            "image box (BTMSketchImageEntity): a rectangle of the image's aspect ratio, not expressible".into(),
-        )),
+        "BTMSketchTextEntity" => {
+            let start =
+                (json::number(msg, "baselineStartX")?, json::number(msg, "baselineStartY")?);
+            let width = (
+                json::number(msg, "baselineDirectionX")?,
+                json::number(msg, "baselineDirectionY")?,
+            );
+            let height = json::number(msg, "ascent")?;
+            let names = ["baseline", "ascent", "left", "right"];
+            boxed(id, "sketch_text", construction, start, width, height, names)
+        }
+        "BTMSketchImageEntity" => {
+            let start = (json::number(msg, "originX")?, json::number(msg, "originY")?);
+            let width = (json::number(msg, "xAxisX")?, json::number(msg, "xAxisY")?);
+            let height = json::number(msg, "aspectRatio")? * width.0.hypot(width.1);
+            let names = ["bottom", "top", "left", "right"];
+            boxed(id, "sketch_image", construction, start, width, height, names)
+        }
         other => Ok(Read::Skip(format!("entity type {other} is not supported"))),
     }
+}
+
+/// A text or image box as the rectangle Onshape draws: from the bottom-left corner `start`
+/// along `width` (a vector, metres) and `height` up (to its left). Its edges are segments
+/// `<id>.<kind>.<bottom>` (bottom-left to bottom-right), `.<top>` (top-left to top-right),
+/// `.left`, `.right` (bottom to top), joined at the corners, and its centre a point
+/// `<id>.<kind>.center`; the constraints (`<id>#…`) make it a rectangle (`#parallel`,
+/// `#perpendicular`, `#perpendicular2`, the corners `#corner1`…`#corner4`) of the drawn
+/// proportions (`#ratio`: the left edge's length over the bottom's, a `LengthRatio`: a text's
+/// width follows its height through the font, an image's through its aspect ratio), with its
+/// centre the middle of a diagonal (`#center`). Four degrees of freedom: place, turn, size.
+fn boxed(
+    id: &str,
+    kind: &str,
+    construction: bool,
+    start: (f64, f64),
+    width: (f64, f64),
+    height: f64,
+    [bottom, top, left, right]: [&str; 4],
+) -> Result<Read, String> {
+    let length = width.0.hypot(width.1);
+    if !(length.is_finite() && length > 0.0 && height.is_finite() && height > 0.0) {
+        return Ok(Read::Skip(format!("a {kind} box with an empty outline")));
+    }
+    let up = (-width.1 / length * height, width.0 / length * height);
+    let bl = start;
+    let br = (bl.0 + width.0, bl.1 + width.1);
+    let tl = (bl.0 + up.0, bl.1 + up.1);
+    let tr = (br.0 + up.0, br.1 + up.1);
+    let center = ((bl.0 + tr.0) / 2.0, (bl.1 + tr.1) / 2.0);
+    let name = |edge: &str| format!("{id}.{kind}.{edge}");
+    let entity = |eid: String, geometry: Geometry| ir::Entity {
+        id: eid,
+        geometry,
+        construction,
+        external: false,
+    };
+    let segment =
+        |edge: &str, a: (f64, f64), b: (f64, f64)| -> Result<(ir::Entity, Shape), String> {
+            let geometry = Geometry::Segment { start: point(a.0, a.1)?, end: point(b.0, b.1)? };
+            Ok((entity(name(edge), geometry), Shape::Segment))
+        };
+    let entities = vec![
+        segment(bottom, bl, br)?,
+        segment(top, tl, tr)?,
+        segment(left, bl, tl)?,
+        segment(right, br, tr)?,
+        (entity(name("center"), Geometry::Point { at: point(center.0, center.1)? }), Shape::Point),
+    ];
+    let end = |edge: &str, part: Part| Ref::part(name(edge), part);
+    let whole = |edge: &str| Ref::whole(name(edge));
+    let constraint = |suffix: &str, kind: Kind, refs: Vec<Ref>, value: Option<Number>| {
+        ir::Constraint { id: format!("{id}#{suffix}"), kind, refs, value, driving: true }
+    };
+    let ratio =
+        Number::from_f64(height / length).ok_or("the box's proportions are not a number")?;
+    let constraints = vec![
+        constraint(
+            "corner1",
+            Kind::Coincident,
+            vec![end(bottom, Part::Start), end(left, Part::Start)],
+            None,
+        ),
+        constraint(
+            "corner2",
+            Kind::Coincident,
+            vec![end(bottom, Part::End), end(right, Part::Start)],
+            None,
+        ),
+        constraint(
+            "corner3",
+            Kind::Coincident,
+            vec![end(top, Part::Start), end(left, Part::End)],
+            None,
+        ),
+        constraint(
+            "corner4",
+            Kind::Coincident,
+            vec![end(top, Part::End), end(right, Part::End)],
+            None,
+        ),
+        constraint("parallel", Kind::Parallel, vec![whole(bottom), whole(top)], None),
+        constraint("perpendicular", Kind::Perpendicular, vec![whole(bottom), whole(left)], None),
+        constraint("perpendicular2", Kind::Perpendicular, vec![whole(bottom), whole(right)], None),
+        constraint("ratio", Kind::LengthRatio, vec![whole(left), whole(bottom)], Some(ratio)),
+        constraint(
+            "center",
+            Kind::Symmetric,
+            vec![end(bottom, Part::Start), end(top, Part::End), Ref::whole(name("center"))],
+            None,
+        ),
+    ];
+    Ok(Read::Composite(entities, constraints))
 }
 
 /// Metres (a double read from the file) to millimetres, exactly: the shortest decimal of the

@@ -20,7 +20,8 @@
 //! | `BTMSketchCurveSegment` + `BTCurveGeometryCircle` | `Arc`: the point at parameter t is `c + r(cos t·u + s·sin t·u⊥)`, u = (xDir, yDir), s = −1 when `clockwise`; a clockwise arc has its ends swapped (Onshape's `.start` is the neutral `End`) |
 //! | `BTCurveGeometryEllipse` (curve / segment) | `Ellipse` / `EllipticalArc` (same parametrisation with the two radii; ends swapped when clockwise) |
 //! | `BTCurveGeometrySpline` (not periodic, not rational, not trimmed) | `BSpline` (poles in mm, knots as given) |
-//! | interpolated splines, periodic, rational or trimmed splines, text and image boxes, conics | skipped, with the reason |
+//! | `BTMSketchTextEntity`, `BTMSketchImageEntity` | a rectangle of 4 segments (`<id>.sketch_text.baseline`, `.ascent` (its top), `.left`, `.right`; `<id>.sketch_image.bottom`, `.top`, `.left`, `.right`) and its centre (`….center`), with the drawn proportions (a text's through its font, an image's aspect ratio): constraints `<id>#corner1`…`#corner4`, `#parallel`, `#perpendicular`, `#perpendicular2`, `#ratio` (`LengthRatio`), `#center` |
+//! | interpolated splines, periodic, rational or trimmed splines, conics | skipped, with the reason |
 //!
 //! SketchGraphs' files carry no external geometry: references outside the sketch (the origin,
 //! model edges) are queries whose ids the dataset stripped, so no entity is `external`.
@@ -167,6 +168,13 @@ fn read_sketch(
             Read::Skip(reason) => {
                 table.add_skipped(id, &reason);
                 sketch.skipped.push(ir::Skipped { item: id.to_owned(), reason });
+            }
+            Read::Composite(parts, constraints) => {
+                for (entity, shape) in parts {
+                    table.add(&entity.id, shape, sketch.entities.len(), msg);
+                    sketch.entities.push(entity);
+                }
+                sketch.constraints.extend(constraints);
             }
         }
     }
