@@ -513,10 +513,7 @@ fn pattern(
             "an open circular pattern: the angle between its instances is not in the file".into()
         );
     }
-    let resolve = |value: &str| match table.resolve(value) {
-        Target::Found(r, shape) => Ok(Arg { r, shape }),
-        Target::Unusable(why) => Err(why),
-    };
+    let resolve = |value: &str| resolved(table, value);
     let local = |role: &str| params.refs.iter().find(|r| r.role == role).and_then(|r| r.local);
     // The instances: element k, instance index (i or i, j) → reference.
     let mut instances: std::collections::BTreeMap<(usize, usize, usize), &str> = Default::default();
@@ -659,10 +656,7 @@ fn offset(params: &Params<'_>, id: &str, table: &Table) -> Result<Vec<Constraint
     let local = |roles: [&str; 2]| {
         params.refs.iter().find(|r| roles.contains(&r.role)).and_then(|r| r.local)
     };
-    let resolve = |value: &str| match table.resolve(value) {
-        Target::Found(r, shape) => Ok(Arg { r, shape }),
-        Target::Unusable(why) => Err(why),
-    };
+    let resolve = |value: &str| resolved(table, value);
     let pair = |curve: [&str; 2], offset: [&str; 2]| -> Result<Option<(Arg, Arg)>, String> {
         match (local(curve), local(offset)) {
             (Some(c), Some(o)) => Ok(Some((resolve(c)?, resolve(o)?))),
@@ -709,10 +703,22 @@ fn offset(params: &Params<'_>, id: &str, table: &Table) -> Result<Vec<Constraint
     Ok(out)
 }
 
+/// A reference resolved, or why it cannot be.
+fn resolved(table: &Table, value: &str) -> Result<Arg, String> {
+    match table.resolve(value) {
+        Target::Found(r, shape) => Ok(Arg { r, shape }),
+        Target::Unusable(why) => Err(why),
+    }
+}
+
 /// The pairs of points (seed, image) a patterned element moves: a point, a segment's end
 /// points, an arc's centre and end points, a circle's centre.
 fn element_points(seed: &Arg, image: &Arg) -> Result<Vec<(Ref, Ref)>, String> {
-    if seed.shape != image.shape && !(seed.is_point() && image.is_point()) {
+    // (Arcs compare as arcs: the neutral ones all run counter-clockwise, whichever way the
+    // file stores each, and a turn or a move keeps the sense, so start goes to start.)
+    let kind = |a: &Arg| std::mem::discriminant(&a.shape);
+    let pointlike = |a: &Arg| matches!(a.shape, Shape::Point | Shape::ZeroLine);
+    if kind(seed) != kind(image) && !(pointlike(seed) && pointlike(image)) {
         return Err(format!(
             "an instance is a {} where its seed is a {}",
             describe(image.shape),
