@@ -548,12 +548,29 @@ impl Lowering {
     /// A point turned about another by `degrees` (an instance of a circular pattern), where
     /// the turn is rational: by 180°, the two symmetric about the pivot; by ±90°, the arms
     /// from the pivot to the point and to its image (segments `<id>#arm` and
-    /// `<id>#arm-image`) perpendicular (`<id>`) and of equal length (`<id>#equal`); by 0°, the
-    /// two coincide. Other turns need the cosine or sine of the angle, irrational.
-    fn rotated(&mut self, id: &str, t: &[Target], degrees: BigRational) -> Result<(), String> {
+    /// `<id>#arm-image`) perpendicular (`<id>`) and of equal length (`<id>#equal`) — which
+    /// does not say which of the two senses, a discrete choice the drawing makes; by 0°, the
+    /// two coincide. A point the sketch joins to the pivot: its image is the pivot (a note
+    /// when the sketch joins that too). Other turns need the cosine or sine of the angle,
+    /// irrational.
+    fn rotated(&mut self, id: &str, t: &[Target], degrees: &BigRational) -> Result<(), String> {
         let full = BigRational::from_integer(360.into());
-        let turn = &degrees - (&degrees / &full).floor() * &full;
+        let turn = degrees - (degrees / &full).floor() * &full;
         let is = |d: i64| turn == BigRational::from_integer(d.into());
+        let pivot = self.root(&t[2].id);
+        if self.root(&t[0].id) == pivot {
+            // A point the sketch puts at the pivot (an arc's centre) stays there.
+            if self.root(&t[1].id) == pivot {
+                self.notes.push(Skipped {
+                    item: id.to_owned(),
+                    reason:
+                        "a turn of the pivot itself, which the sketch's coincidences keep in place"
+                            .into(),
+                });
+                return Ok(());
+            }
+            return self.push(K::Coincident, id, &[&t[1], &t[2]], None);
+        }
         if is(0) {
             self.push(K::Coincident, id, &[&t[0], &t[1]], None)
         } else if is(180) {
@@ -607,25 +624,31 @@ impl Lowering {
         )
     }
 
-    /// Whether the move of a pattern's point (`Rotated` by `turn`, or `Translated`) on these
-    /// points is said already, up to the sketch's coincidences: then a note names the
-    /// constraint that says it.
-    fn said_before(&mut self, id: &str, t: &[Target], turn: Option<&BigRational>) -> bool {
-        let mut key: Vec<String> = t.iter().map(|x| self.root(&x.id)).collect();
-        key.extend(turn.map(|d| d.to_string()));
-        match self.moves.get(&key) {
-            Some(first) => {
-                self.notes.push(Skipped {
-                    item: id.to_owned(),
-                    reason: format!("a move of a pattern's point that `{first}` says already"),
-                });
-                true
-            }
-            None => {
-                self.moves.insert(key, id.to_owned());
-                false
-            }
+    /// A pattern's move of a point (`Rotated` by `turn` degrees, or `Translated`), once: the
+    /// same move of the same points up to the sketch's coincidences (a corner two patterned
+    /// segments share) is a note naming the constraint that made it. Recorded only once
+    /// lowered, so that a note never names a skipped constraint.
+    fn move_once(
+        &mut self,
+        id: &str,
+        t: &[Target],
+        turn: Option<&BigRational>,
+        lower: impl FnOnce(&mut Self) -> Result<(), String>,
+    ) -> Result<(), String> {
+        let full = BigRational::from_integer(360.into());
+        let mut key: Vec<String> = vec![if turn.is_some() { "turn" } else { "move" }.to_owned()];
+        key.extend(t.iter().map(|x| self.root(&x.id)));
+        key.extend(turn.map(|d| (d - (d / &full).floor() * &full).to_string()));
+        if let Some(first) = self.moves.get(&key) {
+            self.notes.push(Skipped {
+                item: id.to_owned(),
+                reason: format!("a move of a pattern's point that `{first}` says already"),
+            });
+            return Ok(());
         }
+        lower(self)?;
+        self.moves.insert(key, id.to_owned());
+        Ok(())
     }
 
     /// A point's exact sketch position (a named centre: its curve's).
@@ -770,17 +793,11 @@ impl Lowering {
             (Kind::Symmetric, [S, S, P | S]) => self.mirror_lines(&c.id, t),
             (Kind::Rotated, [P, P, P]) => {
                 let degrees = value()?;
-                if self.said_before(&c.id, t, Some(&degrees)) {
-                    return Ok(());
-                }
-                self.rotated(&c.id, t, degrees)
+                self.move_once(&c.id, t, Some(&degrees), |l| l.rotated(&c.id, t, &degrees))
             }
             (Kind::Rotated, _) => unsupported("a rotated copy of something other than a point"),
             (Kind::Translated, [P, P, P, P]) => {
-                if self.said_before(&c.id, t, None) {
-                    return Ok(());
-                }
-                self.translated(&c.id, t)
+                self.move_once(&c.id, t, None, |l| l.translated(&c.id, t))
             }
             (Kind::Translated, _) => unsupported("a moved copy of something other than a point"),
             (Kind::Distance, [P, P] | [P, S] | [S, P] | [S, S] | [P, Class::Plane]) => {
@@ -853,13 +870,13 @@ impl Lowering {
             (Kind::LengthRatio, _) => unsupported("a ratio of lengths of arcs or infinite lines"),
             (Kind::LengthDifference, _) => unsupported("a difference of lengths"),
             (Kind::EqualLineArcLength, _) => unsupported("a segment as long as an arc"),
-            // (The model's EqualDistance states a length equal to a point–line distance too;
-            // lowered, it leaves loops beside other equal lengths that the placement does not
-            // close yet — SolveSpace's `mapping2d` test file —, so it stays skipped.)
             (Kind::EqualPointLineDistances, [P, S, P, S]) => {
                 self.push(K::EqualDistance, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
             }
             (Kind::EqualPointLineDistances, _) => unsupported("equal point–line distances"),
+            // (The model's EqualDistance states a length equal to a point–line distance too;
+            // lowered, it leaves loops beside other equal lengths that the placement does not
+            // close yet — SolveSpace's `mapping2d` test file —, so it stays skipped.)
             (Kind::EqualLengthPointLineDistance, _) => {
                 unsupported("a length equal to a point–line distance")
             }

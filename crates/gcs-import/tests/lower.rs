@@ -486,6 +486,9 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
             segment("s1", (1, 1), (3, 2)),
             segment("s2", (-1, 1), (-3, 2)),
             segment("m", (0, 0), (0, 10)),
+            point("o", 0, 0),
+            point("o90", 0, 0),
+            point("o180", 0, 0),
         ],
         vec![
             constraint("r90", Kind::Rotated, vec![w("a"), w("q90"), w("c")], Some(90)),
@@ -499,6 +502,11 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
                 None,
             ),
             constraint("mirror", Kind::Symmetric, vec![w("s1"), w("s2"), w("m")], None),
+            // A point the sketch puts at the pivot, turned.
+            constraint("at", Kind::Coincident, vec![w("o"), w("c")], None),
+            constraint("at2", Kind::Coincident, vec![w("o180"), w("c")], None),
+            constraint("turn90", Kind::Rotated, vec![w("o"), w("o90"), w("c")], Some(90)),
+            constraint("turn180", Kind::Rotated, vec![w("o"), w("o180"), w("c")], Some(180)),
         ],
     );
     let l = lower(&s);
@@ -507,9 +515,13 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
     assert_eq!(reasons.len(), 1, "{reasons:?}");
     assert_eq!(reasons[0].0, "r60");
     assert!(reasons[0].1.contains("a rotation by 60°"), "{}", reasons[0].1);
-    assert_eq!(l.notes.len(), 1);
+    assert_eq!(l.notes.len(), 2);
     assert_eq!(l.notes[0].item, "again");
     assert!(l.notes[0].reason.contains("`tr` says already"), "{}", l.notes[0].reason);
+    assert_eq!(l.notes[1].item, "turn180");
+    assert!(l.notes[1].reason.contains("the pivot itself"), "{}", l.notes[1].reason);
+    // Its image is the pivot.
+    assert_eq!(lowered(&l, "turn90"), (ConstraintKind::Coincident, strings(&["o90", "c"]), None));
 
     assert_eq!(
         lowered(&l, "r90"),
@@ -552,12 +564,12 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
         (strings(&["-1", "1"]), strings(&["-3", "2"]))
     );
 
-    // Unknowns: 14 points of the sketch (6 points, 4 segments: 28) and 3 helper points (6) =
-    // 34; equations: the turns 2 + 2, the move 4, the mirror 4 + 2 = 14, independent: 20 DOF
-    // with the 3 displacements.
+    // Unknowns: 17 points of the sketch (9 points, 4 segments: 34) and 3 helper points (6) =
+    // 40; equations: the turns 2 + 2, the move 4, the mirror 4 + 2, the points at the pivot
+    // 2 + 2 + 2 = 20, independent: 20 DOF with the 3 displacements.
     let a = gcs_analysis::analyze(sys, &Default::default()).unwrap();
-    assert_eq!(a.rank - a.internal_equations, 14);
-    assert_eq!(a.dof + a.trivial_motions, 34 - 14);
+    assert_eq!(a.rank - a.internal_equations, 20);
+    assert_eq!(a.dof + a.trivial_motions, 40 - 20);
     assert!(a.redundant.is_empty());
     let back = System::from_ron_str(&sys.to_ron(), None).unwrap();
     assert_eq!(back.to_ron(), sys.to_ron());

@@ -115,7 +115,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
     );
     // 5,531 constraints in the files: 554 skipped, 43 mirrors of segments said by the mirrors
     // of their end points (notes), 4 patterns read as 115 moves of points (`<id>#<element>,
-    // <instance>`: 30 `Rotated`, 85 `Translated`, and 5 `#equal` radii), 31 offsets read as 44
+    // <instance>`: 30 `Rotated`, 85 `Translated`, and 5 `#radius` equalities), 31 offsets read as 44
     // parallelisms or concentricities of their pairs of curves (`#master`, `#second`) and, for
     // 28 of them, equal gaps (`EqualPointLineDistances`, the id), 4,899 others read; 15 of these
     // become two (two coincident circles, 14 mirrored circles: the second is `<id>#equal`); the
@@ -123,7 +123,8 @@ fn every_sample_file_reads_with_the_expected_totals() {
     // 5,151.
     assert_eq!(source_constraints, 5531);
     assert_eq!(count(|s| s.constraints.len()), 5151);
-    assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#equal")).count()), 20);
+    assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#equal")).count()), 15);
+    assert_eq!(count(|s| s.constraints.iter().filter(|c| c.id.ends_with("#radius")).count()), 5);
     let moves = count(|s| {
         s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
     });
@@ -689,7 +690,7 @@ fn each_constraint_type() {
         c("k47#1,2"),
         (Kind::Rotated, vec![part("c1", Part::Center), part("c2", Part::Center), p3.clone()])
     );
-    assert_eq!(c("k47#1,2#equal"), (Kind::Equal, vec![c1.clone(), c2.clone()]));
+    assert_eq!(c("k47#1,2#radius"), (Kind::Equal, vec![c1.clone(), c2.clone()]));
     assert!(skipped(s, "k48").contains("a circular pattern of 6 instances"));
     assert_eq!(skipped(s, "k39"), "PIERCE: this constraint type is not supported");
     assert_eq!(

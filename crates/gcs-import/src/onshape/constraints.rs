@@ -490,7 +490,7 @@ pub(super) fn read(
 /// A circular or linear pattern: each instance of each element is its seed (instance 0) turned
 /// about the pivot or moved along the directions, as `Rotated` / `Translated` constraints on
 /// their points, named `<id>#<element>,<instance>` (`#<element>,<i>,<j>` for a linear pattern in
-/// two directions; a circle's radius: `…#equal`, an `Equal`).
+/// two directions; a circle's radius: `…#radius`, an `Equal`).
 ///
 /// A closed circular pattern of N instances turns instance i by i·360°/N (its sense, as the
 /// drawing shows); instance (i, j) of a linear pattern is instance (i − 1, j) moved by the
@@ -590,7 +590,7 @@ fn pattern(
                 push(&mut out, cid, Kind::Rotated, vec![s, q, pivot.clone()], Some(angle.clone()));
             }
             if seed.shape == Shape::Circle {
-                let cid = format!("{id}#{k},{i}#equal");
+                let cid = format!("{id}#{k},{i}#radius");
                 push(&mut out, cid, Kind::Equal, vec![seed.r.clone(), image.r.clone()], None);
             }
         }
@@ -633,7 +633,7 @@ fn pattern(
                 push(&mut out, cid, Kind::Translated, vec![s, q, from.clone(), to.clone()], None);
             }
             if seed.shape == Shape::Circle {
-                let cid = format!("{id}#{name}#equal");
+                let cid = format!("{id}#{name}#radius");
                 push(&mut out, cid, Kind::Equal, vec![seed.r.clone(), image.r.clone()], None);
             }
         }

@@ -122,6 +122,21 @@ fn boxed(
     start: (f64, f64),
     width: (f64, f64),
     height: f64,
+    edges: [&str; 4],
+) -> Result<Read, String> {
+    // Numbers out of range skip the box, not the file.
+    rectangle(id, kind, construction, start, width, height, edges)
+        .or_else(|why| Ok(Read::Skip(format!("a {kind} box: {why}"))))
+}
+
+/// See [`boxed`].
+fn rectangle(
+    id: &str,
+    kind: &str,
+    construction: bool,
+    start: (f64, f64),
+    width: (f64, f64),
+    height: f64,
     [bottom, top, left, right]: [&str; 4],
 ) -> Result<Read, String> {
     let length = width.0.hypot(width.1);
