@@ -15,6 +15,9 @@ pub(super) enum Outcome {
     Constraints(Vec<Constraint>),
     /// Why it cannot be expressed.
     Skip(Skipped),
+    /// What of it can be expressed, and why the rest cannot (the skipped item carries the
+    /// constraint's own id, which none of the constraints takes).
+    Part(Vec<Constraint>, Skipped),
 }
 
 /// A reference parameter.
@@ -204,7 +207,11 @@ pub(super) fn read(
     match ctype {
         "OFFSET" => {
             return match offset(&params, id, table) {
-                Ok(out) => Ok(Outcome::Constraints(out)),
+                Ok((out, None)) => Ok(Outcome::Constraints(out)),
+                Ok((out, Some(why))) => Ok(Outcome::Part(
+                    out,
+                    Skipped { item: id.to_owned(), reason: format!("{ctype}: {why}") },
+                )),
                 Err(why) => skip(why),
             };
         }
@@ -649,10 +656,15 @@ fn pattern(
 /// `localSecondOffset`, or `local3`, `local1`), that pair is too (`<id>#second`) and its gap is
 /// the first's: for lines, the distance from the offset's start to its curve is the same in
 /// both pairs (`EqualPointLineDistances`, the id). The first pair is shared by every offset of
-/// one operation: its relation is stated once ([`super::fold_repeated_offsets`]). Skipped: a
-/// gap between circles (a difference of radii, not in the gcs model), an offset of an infinite
-/// line.
-fn offset(params: &Params<'_>, id: &str, table: &Table) -> Result<Vec<Constraint>, String> {
+/// one operation: its relation is stated once ([`super::fold_repeated_offsets`]). Where a pair
+/// is of circles (a gap that is a difference of radii, not in the gcs model) or the offset is
+/// an infinite line, the equal gap is skipped and the relations kept: the reason comes back
+/// beside them.
+fn offset(
+    params: &Params<'_>,
+    id: &str,
+    table: &Table,
+) -> Result<(Vec<Constraint>, Option<String>), String> {
     let local = |roles: [&str; 2]| {
         params.refs.iter().find(|r| roles.contains(&r.role)).and_then(|r| r.local)
     };
@@ -684,7 +696,7 @@ fn offset(params: &Params<'_>, id: &str, table: &Table) -> Result<Vec<Constraint
         driving: true,
     };
     let mut out = vec![constraint(format!("{id}#master"), relation(&first)?)];
-    let Some(second) = second else { return Ok(out) };
+    let Some(second) = second else { return Ok((out, None)) };
     out.push(constraint(format!("{id}#second"), relation(&second)?));
     let gap = |(c, o): &(Arg, Arg)| -> Result<(Ref, Ref), String> {
         if !(c.is_line() && o.is_line()) {
@@ -698,9 +710,15 @@ fn offset(params: &Params<'_>, id: &str, table: &Table) -> Result<Vec<Constraint
         }
         Ok((Ref::part(o.r.entity.clone(), Part::Start), c.r.clone()))
     };
-    let ((p, l), (q, m)) = (gap(&first)?, gap(&second)?);
-    out.push(constraint(id.to_owned(), (Kind::EqualPointLineDistances, vec![p, l, q, m])));
-    Ok(out)
+    match (gap(&first), gap(&second)) {
+        (Ok((p, l)), Ok((q, m))) => {
+            out.push(constraint(id.to_owned(), (Kind::EqualPointLineDistances, vec![p, l, q, m])));
+            Ok((out, None))
+        }
+        (Err(why), _) | (_, Err(why)) => {
+            Ok((out, Some(format!("the equal gap of the two pairs: {why}"))))
+        }
+    }
 }
 
 /// A reference resolved, or why it cannot be.

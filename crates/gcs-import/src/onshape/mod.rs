@@ -197,6 +197,10 @@ fn read_sketch(
         match constraints::read(msg, id, &table, &sketch.entities).map_err(in_constraint)? {
             Outcome::Constraints(list) => sketch.constraints.extend(list),
             Outcome::Skip(skipped) => sketch.skipped.push(skipped),
+            Outcome::Part(list, skipped) => {
+                sketch.constraints.extend(list);
+                sketch.skipped.push(skipped);
+            }
         }
     }
     fold_implied_mirrors(&mut sketch);
