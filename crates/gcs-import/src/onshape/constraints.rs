@@ -243,9 +243,9 @@ pub(super) fn read(
     let mut axis = None;
     for p in &params.refs {
         let Some(local) = p.local else { continue };
-        let arg = match table.resolve(local) {
-            Target::Found(r, shape) => Arg { r, shape },
-            Target::Unusable(why) => return skip(why),
+        let arg = match resolved(table, local) {
+            Ok(arg) => arg,
+            Err(why) => return skip(why),
         };
         if p.role.contains("Mirror") {
             axis = Some(arg);

@@ -124,94 +124,97 @@ fn boxed(
     height: f64,
     edges: [&str; 4],
 ) -> Result<Read, String> {
+    let [bottom, top, left, right] = edges;
     // Numbers out of range skip the box, not the file.
-    rectangle(id, kind, construction, start, width, height, edges)
-        .or_else(|why| Ok(Read::Skip(format!("a {kind} box: {why}"))))
-}
-
-/// See [`boxed`].
-fn rectangle(
-    id: &str,
-    kind: &str,
-    construction: bool,
-    start: (f64, f64),
-    width: (f64, f64),
-    height: f64,
-    [bottom, top, left, right]: [&str; 4],
-) -> Result<Read, String> {
-    let length = width.0.hypot(width.1);
-    if !(length.is_finite() && length > 0.0 && height.is_finite() && height > 0.0) {
-        return Ok(Read::Skip(format!("a {kind} box with an empty outline")));
-    }
-    let up = (-width.1 / length * height, width.0 / length * height);
-    let bl = start;
-    let br = (bl.0 + width.0, bl.1 + width.1);
-    let tl = (bl.0 + up.0, bl.1 + up.1);
-    let tr = (br.0 + up.0, br.1 + up.1);
-    let center = ((bl.0 + tr.0) / 2.0, (bl.1 + tr.1) / 2.0);
-    let name = |edge: &str| format!("{id}.{kind}.{edge}");
-    let entity = |eid: String, geometry: Geometry| ir::Entity {
-        id: eid,
-        geometry,
-        construction,
-        external: false,
-    };
-    let segment =
-        |edge: &str, a: (f64, f64), b: (f64, f64)| -> Result<(ir::Entity, Shape), String> {
-            let geometry = Geometry::Segment { start: point(a.0, a.1)?, end: point(b.0, b.1)? };
-            Ok((entity(name(edge), geometry), Shape::Segment))
+    let rectangle = || -> Result<Read, String> {
+        let length = width.0.hypot(width.1);
+        if !(length.is_finite() && length > 0.0 && height.is_finite() && height > 0.0) {
+            return Ok(Read::Skip(format!("a {kind} box with an empty outline")));
+        }
+        let up = (-width.1 / length * height, width.0 / length * height);
+        let bl = start;
+        let br = (bl.0 + width.0, bl.1 + width.1);
+        let tl = (bl.0 + up.0, bl.1 + up.1);
+        let tr = (br.0 + up.0, br.1 + up.1);
+        let center = ((bl.0 + tr.0) / 2.0, (bl.1 + tr.1) / 2.0);
+        let name = |edge: &str| format!("{id}.{kind}.{edge}");
+        let entity = |eid: String, geometry: Geometry| ir::Entity {
+            id: eid,
+            geometry,
+            construction,
+            external: false,
         };
-    let entities = vec![
-        segment(bottom, bl, br)?,
-        segment(top, tl, tr)?,
-        segment(left, bl, tl)?,
-        segment(right, br, tr)?,
-        (entity(name("center"), Geometry::Point { at: point(center.0, center.1)? }), Shape::Point),
-    ];
-    let end = |edge: &str, part: Part| Ref::part(name(edge), part);
-    let whole = |edge: &str| Ref::whole(name(edge));
-    let constraint = |suffix: &str, kind: Kind, refs: Vec<Ref>, value: Option<Number>| {
-        ir::Constraint { id: format!("{id}#{suffix}"), kind, refs, value, driving: true }
+        let segment =
+            |edge: &str, a: (f64, f64), b: (f64, f64)| -> Result<(ir::Entity, Shape), String> {
+                let geometry = Geometry::Segment { start: point(a.0, a.1)?, end: point(b.0, b.1)? };
+                Ok((entity(name(edge), geometry), Shape::Segment))
+            };
+        let entities = vec![
+            segment(bottom, bl, br)?,
+            segment(top, tl, tr)?,
+            segment(left, bl, tl)?,
+            segment(right, br, tr)?,
+            (
+                entity(name("center"), Geometry::Point { at: point(center.0, center.1)? }),
+                Shape::Point,
+            ),
+        ];
+        let end = |edge: &str, part: Part| Ref::part(name(edge), part);
+        let whole = |edge: &str| Ref::whole(name(edge));
+        let constraint = |suffix: &str, kind: Kind, refs: Vec<Ref>, value: Option<Number>| {
+            ir::Constraint { id: format!("{id}#{suffix}"), kind, refs, value, driving: true }
+        };
+        let ratio =
+            Number::from_f64(height / length).ok_or("the box's proportions are not a number")?;
+        let constraints = vec![
+            constraint(
+                "corner1",
+                Kind::Coincident,
+                vec![end(bottom, Part::Start), end(left, Part::Start)],
+                None,
+            ),
+            constraint(
+                "corner2",
+                Kind::Coincident,
+                vec![end(bottom, Part::End), end(right, Part::Start)],
+                None,
+            ),
+            constraint(
+                "corner3",
+                Kind::Coincident,
+                vec![end(top, Part::Start), end(left, Part::End)],
+                None,
+            ),
+            constraint(
+                "corner4",
+                Kind::Coincident,
+                vec![end(top, Part::End), end(right, Part::End)],
+                None,
+            ),
+            constraint("parallel", Kind::Parallel, vec![whole(bottom), whole(top)], None),
+            constraint(
+                "perpendicular",
+                Kind::Perpendicular,
+                vec![whole(bottom), whole(left)],
+                None,
+            ),
+            constraint(
+                "perpendicular2",
+                Kind::Perpendicular,
+                vec![whole(bottom), whole(right)],
+                None,
+            ),
+            constraint("ratio", Kind::LengthRatio, vec![whole(left), whole(bottom)], Some(ratio)),
+            constraint(
+                "center",
+                Kind::Symmetric,
+                vec![end(bottom, Part::Start), end(top, Part::End), Ref::whole(name("center"))],
+                None,
+            ),
+        ];
+        Ok(Read::Composite(entities, constraints))
     };
-    let ratio =
-        Number::from_f64(height / length).ok_or("the box's proportions are not a number")?;
-    let constraints = vec![
-        constraint(
-            "corner1",
-            Kind::Coincident,
-            vec![end(bottom, Part::Start), end(left, Part::Start)],
-            None,
-        ),
-        constraint(
-            "corner2",
-            Kind::Coincident,
-            vec![end(bottom, Part::End), end(right, Part::Start)],
-            None,
-        ),
-        constraint(
-            "corner3",
-            Kind::Coincident,
-            vec![end(top, Part::Start), end(left, Part::End)],
-            None,
-        ),
-        constraint(
-            "corner4",
-            Kind::Coincident,
-            vec![end(top, Part::End), end(right, Part::End)],
-            None,
-        ),
-        constraint("parallel", Kind::Parallel, vec![whole(bottom), whole(top)], None),
-        constraint("perpendicular", Kind::Perpendicular, vec![whole(bottom), whole(left)], None),
-        constraint("perpendicular2", Kind::Perpendicular, vec![whole(bottom), whole(right)], None),
-        constraint("ratio", Kind::LengthRatio, vec![whole(left), whole(bottom)], Some(ratio)),
-        constraint(
-            "center",
-            Kind::Symmetric,
-            vec![end(bottom, Part::Start), end(top, Part::End), Ref::whole(name("center"))],
-            None,
-        ),
-    ];
-    Ok(Read::Composite(entities, constraints))
+    rectangle().or_else(|why| Ok(Read::Skip(format!("a {kind} box: {why}"))))
 }
 
 /// Metres (a double read from the file) to millimetres, exactly: the shortest decimal of the
