@@ -203,26 +203,40 @@ impl<F: Field> Poly<F> {
         Poly::from_map(map)
     }
 
-    /// The polynomial with variable `v` replaced by the polynomial `e`.
-    fn compose(&self, v: usize, e: &Poly<F>) -> Poly<F> {
+    /// The polynomial with variable `v` replaced by the polynomial `e`, its term operations
+    /// added to `work`; `None` once that passes [`MAX_WORK`] (a substitution can expand a
+    /// polynomial of high degree beyond any use).
+    fn compose(&self, v: usize, e: &Poly<F>, work: &mut u64) -> Option<Poly<F>> {
         if self.terms.iter().all(|(m, _)| m[v] == 0) {
-            return self.clone();
+            return Some(self.clone());
         }
         let mut powers = vec![Poly::one()];
-        let mut sum = Poly::zero();
+        let mut sum: BTreeMap<Key, F> = BTreeMap::new();
         for (m, c) in &self.terms {
             let k = usize::from(m[v]);
             while powers.len() <= k {
-                let next = powers[powers.len() - 1].times(e);
+                let last = &powers[powers.len() - 1];
+                *work += (last.terms.len() * e.terms.len()) as u64;
+                if *work > MAX_WORK {
+                    return None;
+                }
+                let next = last.times(e);
                 powers.push(next);
             }
             let mut rest = *m;
             rest[DEG] -= rest[v];
             rest[v] = 0;
-            let term = Poly { terms: vec![(rest, c.clone())] };
-            sum = sum.add(&term.times(&powers[k]));
+            *work += powers[k].terms.len() as u64;
+            if *work > MAX_WORK {
+                return None;
+            }
+            for (pm, pc) in &powers[k].terms {
+                let key = product(&rest, pm).unwrap_or(rest);
+                let entry = sum.entry(Key(key)).or_insert_with(F::zero);
+                *entry = entry.add(&c.mul(pc));
+            }
         }
-        sum
+        Some(Poly::from_map(sum))
     }
 
     /// The value at `x` (one value per variable, missing ones zero).
@@ -324,6 +338,7 @@ pub(crate) enum NoPoint {
 
 /// `f` reduced completely by the monic basis `g`.
 fn reduce<F: Field>(f: &Poly<F>, g: &[Poly<F>], work: &mut u64) -> Poly<F> {
+    *work += f.terms.len() as u64;
     let mut map = f.to_map();
     let mut rest: Vec<(Mono, F)> = Vec::new();
     while let Some((k, c)) = map.pop_last() {
@@ -718,7 +733,7 @@ fn eliminate<F: Field>(
 ) -> Result<(), NoPoint> {
     for p in system.iter_mut().chain(solved.iter_mut().map(|(_, p)| p)) {
         *work += p.terms.len() as u64;
-        *p = p.compose(v, &e);
+        *p = p.compose(v, &e, work).ok_or(NoPoint::TooLarge)?;
     }
     system.retain(|p| !p.is_zero());
     solved.push((v, e));
@@ -868,6 +883,26 @@ mod tests {
         check(&eqs, &pts);
         let one = ModP::from_i64(1);
         assert!(pts.iter().any(|p| p[1] == one || p[1] == one.neg()));
+    }
+
+    #[test]
+    fn a_substitution_that_would_explode_stops_at_the_work_bound() {
+        // x0^20 with x0 = x1 + … + x20 has C(39, 19) ≈ 6.9e10 terms: refused, quickly.
+        let mut e = c(1);
+        for i in 1..=20 {
+            e = e.add(&x(i));
+        }
+        let mut f = c(1);
+        for _ in 0..20 {
+            f = f.mul(&x(0));
+        }
+        let mut work = 0;
+        assert_eq!(f.compose(0, &e, &mut work), None);
+        assert!(work > MAX_WORK);
+        // A small one is the expansion: (x1 + 2)² − x1² − 4·x1 = 4.
+        let sq = x(0).mul(&x(0)).sub(&x(1).mul(&x(1))).sub(&x(1).times(&c(4)));
+        let mut work = 0;
+        assert_eq!(sq.compose(0, &x(1).add(&c(2)), &mut work), Some(c(4)));
     }
 
     #[test]
