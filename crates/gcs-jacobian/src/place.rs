@@ -640,8 +640,16 @@ fn with_implied(system: &System, tangencies: bool) -> Option<System> {
 /// The height in bits beyond which a failed rational run ends the rational placement (see
 /// [`place_in`]). Successful placements of the CAD samples stay below 256 bits but for a
 /// handful (up to 2,400 bits, reached by their first run, which the cap does not stop);
-/// failed runs of large sketches reached 2,000 bits at 4 s each.
+/// failed runs of large sketches reached 2,000 bits at 4 s each. (A closed rod of arcs and
+/// tangent segments needs a failed run above 768 bits before its success.)
 const HEIGHT_CAP: u64 = 1024;
+
+/// The height in bits beyond which the rational placement tries no other order once the
+/// first has failed (see [`place_in`]). Another order closes what a small sketch's first order
+/// could not (one equal distance between point–segment pairs), but none of the CAD samples'
+/// successes came after the first order, while the further orders of the sketches whose
+/// failed runs grew large numbers cost a tenth of the corpus' time.
+const ORDER_HEIGHT_CAP: u64 = 256;
 
 /// The largest height in bits of the rationals among `coords` (residues count as none).
 fn height_bits(coords: &[Q]) -> u64 {
@@ -710,6 +718,9 @@ fn place_in(
     // or order, or the learning stops); modulo the prime, a run that failed for want of a
     // square root is also tried again with other random choices.
     let (epochs, lessons) = if nent <= 2000 { (8, nent.clamp(4, 16)) } else { (2, 0) };
+    // Over ℚ, the largest height a failed run reached: another order is tried only while the
+    // numbers stayed small (see [`ORDER_HEIGHT_CAP`]).
+    let mut failed_height = 0;
     let mut rng = SplitMix64::new(options.seed ^ 0x5EED);
     let mut tiebreak: Vec<u64> = (0..nent as u64).collect();
     let mut learned = Learned::new(system);
@@ -784,7 +795,9 @@ fn place_in(
         // along the sketch's chains of determined constructions (each at least doubles them),
         // which no other order or grouping undoes, and each further run costs as much; the
         // modular witness, whose numbers have one size, takes over.
-        if !options.modular && height_bits(&p.coords) > HEIGHT_CAP {
+        let height = if options.modular { 0 } else { height_bits(&p.coords) };
+        failed_height = failed_height.max(height);
+        if height > HEIGHT_CAP {
             failure.get_or_insert(f.public);
             break;
         }
@@ -801,7 +814,7 @@ fn place_in(
             learnt += 1;
         } else {
             epoch += 1;
-            if epoch >= epochs {
+            if epoch >= epochs || failed_height > ORDER_HEIGHT_CAP {
                 failure.get_or_insert(f.public);
                 break;
             }
