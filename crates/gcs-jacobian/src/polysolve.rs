@@ -887,7 +887,8 @@ mod tests {
 
     #[test]
     fn a_substitution_that_would_explode_stops_at_the_work_bound() {
-        // x0^20 with x0 = x1 + … + x20 has C(39, 19) ≈ 6.9e10 terms: refused, quickly.
+        // x0^20 with x0 = 1 + x1 + … + x20 has C(40, 20) ≈ 1.4e11 terms: refused at the sixth
+        // power's product (about half a second).
         let mut e = c(1);
         for i in 1..=20 {
             e = e.add(&x(i));
