@@ -166,31 +166,20 @@ fn boxed(
         };
         let ratio =
             Number::from_f64(height / length).ok_or("the box's proportions are not a number")?;
-        let constraints = vec![
-            constraint(
-                "corner1",
-                Kind::Coincident,
-                vec![end(bottom, Part::Start), end(left, Part::Start)],
-                None,
-            ),
-            constraint(
-                "corner2",
-                Kind::Coincident,
-                vec![end(bottom, Part::End), end(right, Part::Start)],
-                None,
-            ),
-            constraint(
-                "corner3",
-                Kind::Coincident,
-                vec![end(top, Part::Start), end(left, Part::End)],
-                None,
-            ),
-            constraint(
-                "corner4",
-                Kind::Coincident,
-                vec![end(top, Part::End), end(right, Part::End)],
-                None,
-            ),
+        let corners = [
+            ((bottom, Part::Start), (left, Part::Start)),
+            ((bottom, Part::End), (right, Part::Start)),
+            ((top, Part::Start), (left, Part::End)),
+            ((top, Part::End), (right, Part::End)),
+        ];
+        let mut constraints: Vec<ir::Constraint> = (1..)
+            .zip(corners)
+            .map(|(k, ((e, p), (f, q)))| {
+                let refs = vec![end(e, p), end(f, q)];
+                constraint(&format!("corner{k}"), Kind::Coincident, refs, None)
+            })
+            .collect();
+        constraints.extend([
             constraint("parallel", Kind::Parallel, vec![whole(bottom), whole(top)], None),
             constraint(
                 "perpendicular",
@@ -211,7 +200,7 @@ fn boxed(
                 vec![end(bottom, Part::Start), end(top, Part::End), Ref::whole(name("center"))],
                 None,
             ),
-        ];
+        ]);
         Ok(Read::Composite(entities, constraints))
     };
     rectangle().or_else(|why| Ok(Read::Skip(format!("a {kind} box: {why}"))))
