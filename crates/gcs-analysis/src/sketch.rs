@@ -144,6 +144,7 @@ pub(crate) fn analyse(
         sketch_rejected: None,
         no_exact_witness: None,
         modulus: None,
+        turns: Vec::new(),
     };
     let (outcome, _, _) = rank_at(system, layout, &drawing, backend)?;
     let at_sketch = redundancies(system, layout, &drawing, &outcome);

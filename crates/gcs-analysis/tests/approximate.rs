@@ -245,3 +245,53 @@ fn modular_where_3_is_a_square(
         .collect();
     (float, modular)
 }
+
+/// A regular hexagon drawn inscribed in a circle, as FreeCAD's polygon tool writes it (six
+/// vertices on the circle, five equal sides): its loop closes only at 60°, which no random
+/// choice hits, and in its polynomial system every folded (zigzag) hexagon is a curve of
+/// solutions. Exact and modp take the turns by 60° from the drawing, modulo the turn prime,
+/// and agree with float on the rank: one motion left, the hexagon's rotation about its fixed
+/// centre, which is a rotation of the whole drawing (a trivial motion: nothing moves relative
+/// to anything else), as it is for an inscribed square at rational coordinates.
+#[test]
+fn an_inscribed_hexagon_takes_its_turns_from_the_drawing() {
+    const HEXAGON: &str = r#"System(name: "hexagon", dim: 2,
+      entities: [Circle(id: "k", center: [0, 0], radius: 82.512197),
+        Point(id: "p1", at: [17.624787723, 80.607874997]),
+        Point(id: "p2", at: [-60.99607363, 55.567451403]),
+        Point(id: "p3", at: [-78.620861354, -25.040423593]),
+        Point(id: "p4", at: [-17.624787723, -80.607874997]),
+        Point(id: "p5", at: [60.99607363, -55.567451403]),
+        Point(id: "p6", at: [78.620861354, 25.040423593]),
+        Segment(id: "s1", from: "p1", to: "p2"), Segment(id: "s2", from: "p2", to: "p3"),
+        Segment(id: "s3", from: "p3", to: "p4"), Segment(id: "s4", from: "p4", to: "p5"),
+        Segment(id: "s5", from: "p5", to: "p6"), Segment(id: "s6", from: "p6", to: "p1")],
+      constraints: [Fix(id: "centre", a: "k.center"), Radius(id: "r", a: "k", value: 82.512197),
+        Incident(id: "i1", a: "p1", b: "k"), Incident(id: "i2", a: "p2", b: "k"),
+        Incident(id: "i3", a: "p3", b: "k"), Incident(id: "i4", a: "p4", b: "k"),
+        Incident(id: "i5", a: "p5", b: "k"), Incident(id: "i6", a: "p6", b: "k"),
+        EqualLength(id: "e2", a: "s1", b: "s2"), EqualLength(id: "e3", a: "s1", b: "s3"),
+        EqualLength(id: "e4", a: "s1", b: "s4"), EqualLength(id: "e5", a: "s1", b: "s5"),
+        EqualLength(id: "e6", a: "s1", b: "s6")])"#;
+    let s = System::from_ron_str(HEXAGON, None).unwrap();
+    let float = analyze(
+        &s,
+        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+    )
+    .unwrap();
+    assert_eq!(float.dof_absolute, 1);
+    for backend in [Backend::Exact, Backend::ModP] {
+        let a = analyze(&s, &AnalysisOptions { backend, ..Default::default() })
+            .unwrap_or_else(|e| panic!("{backend:?}: {e}"));
+        assert_eq!(a.witness.source, WitnessSource::Modular, "{backend:?}");
+        assert_eq!(a.witness.modulus, Some(gcs_rank::TURN_PRIME), "{backend:?}");
+        // Turns by 60° and 120° (a vertex is taken from whichever placed one comes first).
+        let turns = &a.witness.turns;
+        assert!(turns.contains(&6) && turns.iter().all(|n| 6 % n == 0), "{backend:?}: {turns:?}");
+        // The second vertex's turn was a free choice when it was taken.
+        assert!(!a.witness.genericity_tested, "{backend:?}");
+        assert_eq!((a.rank, a.dof_absolute), (float.rank, float.dof_absolute), "{backend:?}");
+        assert_eq!((a.trivial_motions, a.dof), (1, 0), "{backend:?}");
+        assert!(a.redundant.is_empty(), "{backend:?}");
+    }
+}

@@ -89,6 +89,20 @@ pub(crate) struct PlaceOptions {
     /// ([`crate::polysolve`]), shared by every placement that holds it (those of one witness
     /// search), so that a sketch no solve closes costs a bounded time more.
     pub(crate) algebra_budget: std::rc::Rc<std::cell::Cell<u64>>,
+    /// Modulo the turn prime (the last resort): a point drawn at a placed point turned about a
+    /// circle's centre by an irrational fraction of a turn is placed there exactly
+    /// ([`Placer::turned`]); what was taken is told here.
+    pub(crate) turns: Option<std::rc::Rc<std::cell::Cell<TurnsTaken>>>,
+}
+
+/// The turns a placement took from the drawing ([`PlaceOptions::turns`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct TurnsTaken {
+    /// Bit `N` for a turn by `k/N` (`N ≤ 36`).
+    pub(crate) divisions: u64,
+    /// Whether one of them was a free choice (the point had solutions of positive dimension:
+    /// the turn may be a special position, not only a root the constraints force).
+    pub(crate) free: bool,
 }
 
 /// Why a placement failed: the entity that could not be placed and the constraints binding it
@@ -401,6 +415,10 @@ struct Placer<'a> {
     no_root: bool,
     /// The work left to the polynomial solves of the whole placement ([`Self::place_algebraic`]).
     algebra_budget: u64,
+    /// With [`PlaceOptions::turns`]: the table of exact turns, the drawing in floating point
+    /// (NaN where an entity has none), and the turns taken.
+    turns: Option<(crate::turns::Turns, &'a [f64])>,
+    taken: TurnsTaken,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -718,6 +736,8 @@ fn place_in(
     // or order, or the learning stops); modulo the prime, a run that failed for want of a
     // square root is also tried again with other random choices.
     let (epochs, lessons) = if nent <= 2000 { (8, nent.clamp(4, 16)) } else { (2, 0) };
+    let turns = options.turns.as_ref().and_then(|_| crate::turns::Turns::new());
+    let drawing: Vec<f64> = if turns.is_some() { drawing(system, layout) } else { Vec::new() };
     // Over ℚ, the largest height a failed run reached: another order is tried only while the
     // numbers stayed small (see [`ORDER_HEIGHT_CAP`]).
     let mut failed_height = 0;
@@ -773,6 +793,8 @@ fn place_in(
             determiners: vec![Vec::new(); nent],
             no_root: false,
             algebra_budget: options.algebra_budget.get(),
+            turns: turns.map(|t| (t, &drawing[..])),
+            taken: TurnsTaken::default(),
         };
         p.choose_variants();
         if options.modular {
@@ -787,6 +809,9 @@ fn place_in(
         options.algebra_budget.set(p.algebra_budget);
         let f = match result {
             Ok(()) => {
+                if let Some(cell) = &options.turns {
+                    cell.set(p.taken);
+                }
                 return Ok(p.coords);
             }
             Err(f) => f,
@@ -830,6 +855,60 @@ fn place_in(
     });
     failure.no_root = any_no_root;
     Err(failure)
+}
+
+/// The drawing in layout coordinates, in floating point (NaN where an entity has none).
+fn drawing(system: &System, layout: &Layout) -> Vec<f64> {
+    let mut d = vec![f64::NAN; layout.ncols()];
+    for e in system.entity_indices() {
+        if let Some(v) = crate::sketch::sketch_coords_in::<Q>(system, e) {
+            for (c, x) in layout.columns(e).zip(&v) {
+                d[c] = qla::to_f64(x);
+            }
+        }
+    }
+    d
+}
+
+/// Whether the drawing shows a turn [`Placer::turned`] could take: two points that share a
+/// constraint with a circle, at its radius from its centre, turned from each other about it
+/// by an irrational fraction of a turn (the placement with turns is not tried otherwise).
+pub(crate) fn drawn_turns(system: &System, layout: &Layout) -> bool {
+    use crate::repr::Repr;
+    if system.dim() != Dim::Two {
+        return false;
+    }
+    let d = drawing(system, layout);
+    let mut on: Vec<Vec<EntityIdx>> = vec![Vec::new(); system.entities().len()];
+    for ci in system.constraint_indices() {
+        let bases = system.constraint_base_entities(ci);
+        for &c in &bases {
+            if layout.repr(c) != Some(Repr::Circle) {
+                continue;
+            }
+            for &p in &bases {
+                if layout.repr(p) == Some(Repr::Point2) && !on[c.index()].contains(&p) {
+                    on[c.index()].push(p);
+                }
+            }
+        }
+    }
+    let at = |e: EntityIdx| -> Option<&[f64]> { d.get(layout.columns(e)) };
+    on.iter().enumerate().filter(|(_, points)| points.len() > 1).any(|(c, points)| {
+        let Some(&[zx, zy, r]) = at(EntityIdx(c as u32)) else { return false };
+        let rel = |p: &EntityIdx| {
+            let &[x, y] = at(*p)? else { return None };
+            let v = [x - zx, y - zy];
+            ((v[0].hypot(v[1]) - r.abs()).abs() <= 1e-7 * r.abs()).then_some(v)
+        };
+        let vs: Vec<[f64; 2]> = points.iter().filter_map(rel).collect();
+        vs.iter().enumerate().any(|(i, u)| {
+            vs[i + 1..].iter().any(|v| {
+                let angle = (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1]);
+                crate::turns::fraction(angle, 1e-7).is_some()
+            })
+        })
+    })
 }
 
 /// The system with a *carrier* line for each 2D segment that is tangent at a point to a
@@ -1579,6 +1658,95 @@ impl Placer<'_> {
         None
     }
 
+    /// With the turn table ([`PlaceOptions::turns`]): places the single 2D point being placed
+    /// where the drawing has it, relative to a placed point at the same distance from the centre
+    /// of a placed circle of its ready constraints: that point turned about the centre by the
+    /// fraction `k/N` of a turn the drawing shows (to 1e-7 rad; `N ≤ 36`, not a multiple of
+    /// 90°), exactly. Kept only where every ready constraint holds there exactly and the point
+    /// is acceptable; `freedom` (the dimension of the point's solutions) says whether it was a
+    /// free choice.
+    fn turned(&mut self, ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)], freedom: usize) -> bool {
+        use crate::repr::Repr;
+        let Some((turns, drawing)) = self.turns else { return false };
+        // One point, or coincident copies of it.
+        let Some(&m) = self.current.first() else { return false };
+        if self.current.iter().any(|&e| {
+            self.layout.repr(e) != Some(Repr::Point2)
+                || self.coincident[e.index()] != self.coincident[m.index()]
+        }) {
+            return false;
+        }
+        let at = |e: EntityIdx| {
+            let c = self.layout.columns(e).start;
+            [drawing[c], drawing[c + 1]]
+        };
+        let own = at(m);
+        let mut centres: Vec<EntityIdx> = Vec::new();
+        for (ci, _) in ready {
+            for &c in &self.bases[ci.index()] {
+                if self.layout.repr(c) == Some(Repr::Circle)
+                    && self.placed[c.index()]
+                    && !centres.contains(&c)
+                {
+                    centres.push(c);
+                }
+            }
+        }
+        let points: Vec<EntityIdx> = self
+            .system
+            .entity_indices()
+            .filter(|&b| {
+                self.placed[b.index()]
+                    && self.layout.repr(b) == Some(Repr::Point2)
+                    && self.coincident[b.index()] != self.coincident[m.index()]
+            })
+            .collect();
+        let cols = self.current_columns();
+        let old: Vec<Q> = cols.iter().map(|c| self.coords[*c].clone()).collect();
+        for c in centres {
+            let zc = self.layout.columns(c).start;
+            let z = [drawing[zc], drawing[zc + 1]];
+            let radius = (own[0] - z[0]).hypot(own[1] - z[1]);
+            if radius.is_nan() || radius <= 0.0 {
+                continue;
+            }
+            for &b in &points {
+                let w = at(b);
+                let (u, v) = ([w[0] - z[0], w[1] - z[1]], [own[0] - z[0], own[1] - z[1]]);
+                if (u[0].hypot(u[1]) - radius).abs() > 1e-7 * radius {
+                    continue;
+                }
+                let angle = (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1]);
+                let Some((k, n)) = crate::turns::fraction(angle, 1e-7) else { continue };
+                let Some([cos, sin]) = turns.turn(k, n) else { continue };
+                let (cos, sin) = (Num::P(cos), Num::P(sin));
+                let centre = [self.coords[zc].clone(), self.coords[zc + 1].clone()];
+                let bc = self.layout.columns(b).start;
+                let d = [&self.coords[bc] - &centre[0], &self.coords[bc + 1] - &centre[1]];
+                let at = [
+                    &centre[0] + &(&(&cos * &d[0]) - &(&sin * &d[1])),
+                    &centre[1] + &(&(&sin * &d[0]) + &(&cos * &d[1])),
+                ];
+                let x: Vec<Q> = self.current.iter().flat_map(|_| at.iter().cloned()).collect();
+                if !self.acceptable(&x) {
+                    continue;
+                }
+                for (col, value) in cols.iter().zip(&x) {
+                    self.coords[*col] = value.clone();
+                }
+                if self.ready_values(ready).iter().all(Q::is_zero) {
+                    self.taken.divisions |= 1 << n;
+                    self.taken.free |= freedom > 0;
+                    return true;
+                }
+                for (col, value) in cols.iter().zip(&old) {
+                    self.coords[*col] = value.clone();
+                }
+            }
+        }
+        false
+    }
+
     /// [`Self::place_group`] by construction: linear equations and quadrics `|P|² = |M|²`.
     fn place_constructively(
         &mut self,
@@ -1649,6 +1817,9 @@ impl Placer<'_> {
         }
         let space = qla::solve(n, &linear)?;
         let freedom = space.basis.len().saturating_sub(usize::from(homogeneous) + quads.len());
+        if self.turns.is_some() && self.turned(ready, freedom) {
+            return Some(freedom);
+        }
         // A free line or plane gets a normal of rational length (a Pythagorean direction near
         // the preference): tangencies to it then have rational solutions.
         // A free endpoint of a segment whose other end is placed goes at a rational distance

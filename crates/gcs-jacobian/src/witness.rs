@@ -104,8 +104,13 @@ pub struct Witness {
     /// For an approximate witness, why no exact one was found.
     pub no_exact_witness: Option<NoWitness>,
     /// For a modular witness, the prime its coordinates are residues modulo (one of
-    /// [`gcs_rank::WITNESS_PRIMES`]); `None` for the others.
+    /// [`gcs_rank::WITNESS_PRIMES`], or [`gcs_rank::TURN_PRIME`]); `None` for the others.
     pub modulus: Option<u64>,
+    /// Modulo the turn prime: the `N` (ascending) of the turns by `k/N` of a full turn the
+    /// placement took from the drawing (a vertex of a regular hexagon placed as the one before
+    /// turned by 60°); empty otherwise. When one of them was a free choice,
+    /// [`Self::genericity_tested`] is false: the turn may be a special position.
+    pub turns: Vec<u32>,
 }
 
 fn sketch_fn(system: &System) -> impl Fn(EntityIdx) -> Option<Vec<Rat>> + '_ {
@@ -239,24 +244,31 @@ fn modular(
     // prime where it is not a square, whatever the random choices).
     // Only a construction that failed for want of a square root is tried modulo the next prime.
     let mut needs_root = true;
-    for q in gcs_rank::WITNESS_PRIMES {
-        if !needs_root {
-            break;
+    // The witness primes, then (the last resort) the turn prime with turns taken from the
+    // drawing: a regular hexagon closes only at 60°, which a random choice never hits, and
+    // whose sine is irrational (see `crate::turns`).
+    let primes = gcs_rank::WITNESS_PRIMES.iter().map(|q| (*q, false));
+    let last = place::drawn_turns(system, layout).then_some((gcs_rank::TURN_PRIME, true));
+    for (q, turns) in primes.chain(last) {
+        if !needs_root && !turns {
+            continue;
         }
         // The polynomial solves of loops get a few of the largest in all, modulo each prime.
         let algebra_budget = std::rc::Rc::new(std::cell::Cell::new(2 * place::ALGEBRA_WORK));
         needs_root = false;
         let found = gcs_rank::with_modulus(q, || -> Result<_, JacobianError> {
-            let mut best: Option<(Vec<u64>, Plan, usize)> = None;
+            let mut best: Option<(Vec<u64>, Plan, usize, place::TurnsTaken)> = None;
             // (Modulo the further primes, one round: they are tried for a root, and the
             // first round's random choices have it as often as any other's.)
-            let rounds = if q == ModP::PRIME { options.rounds.max(1) + 1 } else { 1 };
+            let rounds = if q == ModP::PRIME || turns { options.rounds.max(1) + 1 } else { 1 };
             for round in 0..rounds {
+                let taken = std::rc::Rc::new(std::cell::Cell::new(place::TurnsTaken::default()));
                 let opts = PlaceOptions {
                     seed: options.seed.wrapping_mul(0x51ED_270B).wrapping_add(round as u64 + 1),
                     noise: 1e-3,
                     modular: true,
                     algebra_budget: algebra_budget.clone(),
+                    turns: turns.then(|| taken.clone()),
                 };
                 let coords = match place::place(system, layout, pref, scale, &opts) {
                     Ok(coords) => coords,
@@ -272,20 +284,23 @@ fn modular(
                 let j = assemble(system, layout, &p, &x, &sketch);
                 let r = gcs_rank::echelon_rank(j.ncols, j.rows).0;
                 if best.as_ref().is_none_or(|b| r > b.2) {
-                    best = Some((x.iter().map(|v| v.value()).collect(), p, r));
+                    best = Some((x.iter().map(|v| v.value()).collect(), p, r, taken.get()));
                 }
             }
             Ok(best)
         })?;
-        if let Some((x, plan, _)) = found {
+        if let Some((x, plan, _, taken)) = found {
+            let turns = (3..=36).filter(|n| taken.divisions & (1 << n) != 0).collect();
             return Ok(Some(Witness {
                 coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
                 source: WitnessSource::Modular,
                 plan,
-                genericity_tested: true,
+                // A free choice turned as drawn may be a special position.
+                genericity_tested: !taken.free,
                 sketch_rejected: sketch_rejected.clone(),
                 no_exact_witness: Some(why.clone()),
                 modulus: Some(q),
+                turns,
             }));
         }
     }
@@ -330,6 +345,7 @@ pub fn find_witness(
                         sketch_rejected: None,
                         no_exact_witness: None,
                         modulus: None,
+                        turns: Vec::new(),
                     });
                 }
                 best = Some((pref.clone(), p, r, WitnessSource::Sketch));
@@ -348,6 +364,7 @@ pub fn find_witness(
             noise: 1e-3,
             modular: false,
             algebra_budget: std::rc::Rc::new(std::cell::Cell::new(0)),
+            turns: None,
         };
         match place::place(system, layout, &pref_q, scale, &opts) {
             Ok(coords) => match plan(
@@ -391,6 +408,7 @@ pub fn find_witness(
             sketch_rejected,
             no_exact_witness: None,
             modulus: None,
+            turns: Vec::new(),
         }),
         None => {
             let msg = NoWitness { sketch: sketch_rejected.clone(), placement: failure };
@@ -427,6 +445,7 @@ pub fn find_witness(
                     sketch_rejected,
                     no_exact_witness: Some(msg),
                     modulus: None,
+                    turns: Vec::new(),
                 }),
                 Err(_) => Err(JacobianError::NoWitness(msg)),
             }

@@ -118,7 +118,10 @@ pub use exact::{
 pub use field::Field;
 pub use float::float_rank_qr;
 pub use lsq::{LmOptions, LmOutcome, Residuals, levenberg_marquardt};
-pub use modp::{ModP, ModPrime, ModQ, PrimeField, WITNESS_PRIMES, modulus, with_modulus};
+pub use modp::{
+    ModP, ModPrime, ModQ, PrimeField, TURN_PERIOD, TURN_PRIME, WITNESS_PRIMES, modulus,
+    with_modulus,
+};
 pub use num_complex::Complex64;
 pub use num_rational::BigRational;
 pub use rank::{analyse_rows_plain, echelon_rank, random_kernel_vector, random_left_kernel_vector};

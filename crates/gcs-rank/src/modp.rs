@@ -250,6 +250,18 @@ pub fn modulus() -> u64 {
 pub const WITNESS_PRIMES: [u64; 4] =
     [ModP::PRIME, 2_305_843_009_213_682_039, 2_305_843_009_213_682_027, 2_305_843_009_213_681_999];
 
+/// The number of turns [`TURN_PRIME`] carries exactly: `lcm(1, …, 36)`.
+pub const TURN_PERIOD: u64 = 144_403_552_893_600;
+
+/// The prime of the last-resort modular witness, `15959 · TURN_PERIOD − 1`: `≡ 3 (mod 4)` like
+/// the other witness primes (a square root is one power), and the points of the unit circle
+/// modulo it (the norm-one elements of `𝔽_{p²}`, `p + 1` of them) include a turn by `k/N` of a
+/// full turn for every `N ≤ 36`: the cosine and sine of 360°/N, irrational over ℚ for N other
+/// than 1, 2 and 4, are residues modulo it, with every relation between them that holds over
+/// the reals (`cos 60° = 1/2`, the turn by 30° twice is the turn by 60°). A regular hexagon or
+/// a circular pattern of 6 has a point there.
+pub const TURN_PRIME: u64 = 2_304_536_300_628_962_399;
+
 /// A prime field: its prime, and its elements from and to machine words.
 pub trait PrimeField: Field + Copy {
     /// The prime (for [`ModQ`], the current one).

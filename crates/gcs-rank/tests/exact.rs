@@ -325,3 +325,15 @@ fn witness_primes_are_what_the_modular_witness_needs() {
     });
     assert_eq!(gcs_rank::modulus(), ModP::PRIME, "the modulus is restored");
 }
+
+/// The turn prime is a prime `≡ 3 (mod 4)` with `p + 1` a multiple of every `N ≤ 36`, so that
+/// the unit circle modulo it has a turn of order `N` for each.
+#[test]
+fn the_turn_prime_carries_every_turn_up_to_36() {
+    use gcs_rank::{TURN_PERIOD, TURN_PRIME};
+    assert!(is_prime(TURN_PRIME) && TURN_PRIME % 4 == 3 && TURN_PRIME > 1 << 60);
+    for n in 1..=36 {
+        assert_eq!(TURN_PERIOD % n, 0, "{n}");
+    }
+    assert_eq!((TURN_PRIME + 1) % TURN_PERIOD, 0);
+}

@@ -279,6 +279,11 @@ pub struct Report {
     /// modulo `2^61 − 1`: √3 for an equilateral triangle).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub witness_prime: Option<u64>,
+    /// At a modular witness modulo the turn prime (the last resort): the `N` of each turn by
+    /// `k/N` of a full turn that the placement took from the drawing (a regular hexagon's
+    /// vertices, each the one before turned by 60°: `[3, 6]`), ascending. Absent otherwise.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub witness_turns: Vec<u32>,
     /// The float backend's constraints whose decision lies within the ambiguity band of its
     /// tolerance (only with `--backend float`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -471,6 +476,7 @@ impl Report {
             sketch: a.sketch.as_ref().map(|sk| SketchReport::new(system, sk)),
             witness_error_bound: a.witness_error_bound,
             witness_prime: a.witness.modulus,
+            witness_turns: a.witness.turns.clone(),
             uncertain: a
                 .uncertain
                 .as_ref()
@@ -649,6 +655,13 @@ pub fn text_with_solution(
         Backend::Float { tolerance } => format!(", tolerance {tolerance:e}"),
         _ => String::new(),
     };
+    let turns = match &a.witness.turns[..] {
+        [] => String::new(),
+        ns => {
+            let each: Vec<String> = ns.iter().map(|n| format!("360°/{n}")).collect();
+            format!(", turns by multiples of {} taken from the drawing", each.join(" and "))
+        }
+    };
     let tested = if a.witness.genericity_tested { "" } else { ", genericity not tested" };
     let how = match a.rank_method {
         // No arithmetic decided the verdict, whatever the backend (which still took the
@@ -661,7 +674,7 @@ pub fn text_with_solution(
     push(
         &mut out,
         format!(
-            "  decided by: {how}; witness: {}{tested}, seed {}",
+            "  decided by: {how}; witness: {}{turns}{tested}, seed {}",
             a.witness.source.name(),
             a.seed
         ),
