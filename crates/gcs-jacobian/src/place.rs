@@ -92,17 +92,18 @@ pub(crate) struct PlaceOptions {
     /// Modulo the turn prime (the last resort): a point drawn at a placed point turned about a
     /// circle's centre by an irrational fraction of a turn is placed there exactly
     /// ([`Placer::turned`]); what was taken is told here.
-    pub(crate) turns: Option<std::rc::Rc<std::cell::Cell<TurnsTaken>>>,
+    pub(crate) turns: Option<std::rc::Rc<std::cell::RefCell<TurnsTaken>>>,
 }
 
 /// The turns a placement took from the drawing ([`PlaceOptions::turns`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct TurnsTaken {
     /// Bit `N` for a turn by `k/N` (`N ≤ 36`).
     pub(crate) divisions: u64,
-    /// Whether one of them was a free choice (the point had solutions of positive dimension:
-    /// the turn may be a special position, not only a root the constraints force).
-    pub(crate) free: bool,
+    /// The turns that were a free choice (the point had solutions of positive dimension: the
+    /// turn may be a special position, not only a root the constraints force): the point
+    /// turned, the placed point it was turned from, and the circle about whose centre.
+    pub(crate) free: Vec<[EntityIdx; 3]>,
 }
 
 /// Why a placement failed: the entity that could not be placed and the constraints binding it
@@ -810,7 +811,7 @@ fn place_in(
         let f = match result {
             Ok(()) => {
                 if let Some(cell) = &options.turns {
-                    cell.set(p.taken);
+                    *cell.borrow_mut() = std::mem::take(&mut p.taken);
                 }
                 return Ok(p.coords);
             }
@@ -1736,7 +1737,9 @@ impl Placer<'_> {
                 }
                 if self.ready_values(ready).iter().all(Q::is_zero) {
                     self.taken.divisions |= 1 << n;
-                    self.taken.free |= freedom > 0;
+                    if freedom > 0 {
+                        self.taken.free.push([m, b, c]);
+                    }
                     return true;
                 }
                 for (col, value) in cols.iter().zip(&old) {

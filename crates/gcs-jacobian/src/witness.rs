@@ -257,12 +257,12 @@ fn modular(
         let algebra_budget = std::rc::Rc::new(std::cell::Cell::new(2 * place::ALGEBRA_WORK));
         needs_root = false;
         let found = gcs_rank::with_modulus(q, || -> Result<_, JacobianError> {
-            let mut best: Option<(Vec<u64>, Plan, usize, place::TurnsTaken)> = None;
+            let mut best: Option<(Vec<u64>, Plan, usize, place::TurnsTaken, bool)> = None;
             // (Modulo the further primes, one round: they are tried for a root, and the
             // first round's random choices have it as often as any other's.)
             let rounds = if q == ModP::PRIME || turns { options.rounds.max(1) + 1 } else { 1 };
             for round in 0..rounds {
-                let taken = std::rc::Rc::new(std::cell::Cell::new(place::TurnsTaken::default()));
+                let taken = std::rc::Rc::new(std::cell::RefCell::new(place::TurnsTaken::default()));
                 let opts = PlaceOptions {
                     seed: options.seed.wrapping_mul(0x51ED_270B).wrapping_add(round as u64 + 1),
                     noise: 1e-3,
@@ -282,21 +282,24 @@ fn modular(
                 let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
                 let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
                 let j = assemble(system, layout, &p, &x, &sketch);
+                let taken = taken.take();
+                let forced = taken.free.iter().all(|t| turn_is_forced(layout, &x, &j, t));
                 let r = gcs_rank::echelon_rank(j.ncols, j.rows).0;
                 if best.as_ref().is_none_or(|b| r > b.2) {
-                    best = Some((x.iter().map(|v| v.value()).collect(), p, r, taken.get()));
+                    best = Some((x.iter().map(|v| v.value()).collect(), p, r, taken, forced));
                 }
             }
             Ok(best)
         })?;
-        if let Some((x, plan, _, taken)) = found {
+        if let Some((x, plan, _, taken, forced)) = found {
             let turns = (3..=36).filter(|n| taken.divisions & (1 << n) != 0).collect();
             return Ok(Some(Witness {
                 coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
                 source: WitnessSource::Modular,
                 plan,
-                // A free choice turned as drawn may be a special position.
-                genericity_tested: !taken.free,
+                // A free choice turned as drawn may be a special position, unless the
+                // constraints hold its turn (see `turn_is_forced`).
+                genericity_tested: forced,
                 sketch_rejected: sketch_rejected.clone(),
                 no_exact_witness: Some(why.clone()),
                 modulus: Some(q),
@@ -305,6 +308,34 @@ fn modular(
         }
     }
     Ok(None)
+}
+
+/// Whether the turn `[m, b, c]` a placement took at a free choice (point `m` placed as `b`
+/// turned about the centre of circle `c`) is held by the constraints at the witness `x`, to
+/// first order: the differential of the angle from `b` to `m` about the centre is a
+/// combination of the Jacobian's rows, so no motion the constraints allow there changes it.
+/// Where it is not, the turn was a choice the constraints left free, and the drawing's value
+/// may be a special position.
+fn turn_is_forced(layout: &Layout, x: &[ModQ], j: &Jacobian<ModQ>, turn: &[EntityIdx; 3]) -> bool {
+    let [m, b, c] = *turn;
+    let (mc, bc, zc) = (layout.columns(m).start, layout.columns(b).start, layout.columns(c).start);
+    let u = [x[bc].sub(&x[zc]), x[bc + 1].sub(&x[zc + 1])];
+    let v = [x[mc].sub(&x[zc]), x[mc + 1].sub(&x[zc + 1])];
+    let cross = u[0].mul(&v[1]).sub(&u[1].mul(&v[0]));
+    let dot = u[0].mul(&v[0]).add(&u[1].mul(&v[1]));
+    // d angle ∝ dot · d cross − cross · d dot, in u (the columns of b) and v (those of m); the
+    // centre moves both.
+    let du = [dot.mul(&v[1]).sub(&cross.mul(&v[0])), dot.mul(&v[0]).neg().sub(&cross.mul(&v[1]))];
+    let dv = [dot.mul(&u[1]).neg().sub(&cross.mul(&u[0])), dot.mul(&u[0]).sub(&cross.mul(&u[1]))];
+    let mut entries = Vec::new();
+    for k in 0..2 {
+        entries.push((bc + k, du[k]));
+        entries.push((mc + k, dv[k]));
+        entries.push((zc + k, du[k].add(&dv[k]).neg()));
+    }
+    let row = gcs_rank::SparseRow::from_entries(entries);
+    let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
+    r == gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned().chain([row])).0
 }
 
 /// Finds a witness of `system` (see the module documentation).
