@@ -128,6 +128,10 @@ struct Lowering {
     /// turn): a point that two listed elements share (a corner of two patterned segments) is
     /// moved once, with the constraint that made it.
     moves: std::collections::HashMap<Vec<String>, String>,
+    /// The regular polygons of irrational turns made so far ([`Lowering::turned`]): by the
+    /// coincidence classes of the turned point and the pivot and the number of vertices, the
+    /// ids of the vertices after the point (counter-clockwise).
+    polygons: std::collections::BTreeMap<(String, String, u64), Vec<String>>,
     /// What was not imported because another constraint says it (see [`Sketch::notes`]).
     notes: Vec<Skipped>,
 }
@@ -147,6 +151,7 @@ pub fn lower(sketch: &Sketch) -> Lowered {
         as_reference: false,
         reference_without_value: false,
         moves: Default::default(),
+        polygons: Default::default(),
         notes: Vec::new(),
     };
     for entity in &sketch.entities {
@@ -589,12 +594,85 @@ impl Lowering {
                     (K::EqualLength, "equal", vec![&arms[0], &arms[1]], None),
                 ],
             )
+        } else if let Some((k, n)) = turn_fraction(&turn) {
+            self.turned(id, t, k, n)
         } else {
             Err(not_in_model(&format!(
-                "a rotation by {}° (its cosine or sine is irrational)",
+                "a rotation by {}° (not a multiple of 360°/N for an N up to 36)",
                 degrees.to_f64().unwrap_or(f64::NAN)
             )))
         }
+    }
+
+    /// A point turned about a pivot by `k/n` of a full turn (counter-clockwise), where the
+    /// turn's cosine or sine is irrational (the model has no such constant): the image is vertex
+    /// `k` of the regular `n`-gon about the pivot with the point as vertex 0, and the polygon is
+    /// made of helper points `<id>#vertex<j>` (once per point, pivot and `n`, named after the
+    /// first turn that needs it), each as far from the pivot as the point
+    /// (`EqualDistance`, `#spoke<j>`) and each side as long as the first (`#side<j>`, the last
+    /// closing on the point); a polygon made already for the point and pivot with a multiple of
+    /// `n` vertices is used instead. Equal sides and spokes hold the polygon's turn in place (its
+    /// other solutions are the star polygons, the images of the regular one under the
+    /// field automorphisms of the turn, where the rank is the same, and folded ones). The
+    /// helpers are drawn exactly turned, to the drawing's rounding.
+    fn turned(&mut self, id: &str, t: &[Target], k: u64, n: u64) -> Result<(), String> {
+        if self.as_reference {
+            return Err("a reference dimension that is not one dimension of the model".into());
+        }
+        let (point, pivot) = (self.root(&t[0].id), self.root(&t[2].id));
+        // A polygon made already with a multiple of n vertices has this turn's vertex too (the
+        // hexagon of a pattern of 6 holds its turns by 120°).
+        let made = self.polygons.iter().find_map(|((x, c, m), v)| {
+            (*x == point && *c == pivot && m % n == 0).then(|| (v.clone(), m / n))
+        });
+        let (vertices, k) = match made {
+            Some((v, every)) => (v, k * every),
+            None => {
+                let key = (point, pivot, n);
+                let (x, c) = (self.point_f64(&t[0].id), self.point_f64(&t[2].id));
+                let mut made = Vec::new();
+                for j in 1..n {
+                    let vertex = format!("{id}#vertex{j}");
+                    let at = x.as_ref().zip(c.as_ref()).and_then(|(x, c)| {
+                        let a = std::f64::consts::TAU * j as f64 / n as f64;
+                        let (u, v) = (x[0] - c[0], x[1] - c[1]);
+                        let turned =
+                            [c[0] + a.cos() * u - a.sin() * v, c[1] + a.sin() * u + a.cos() * v];
+                        turned.iter().map(|z| BigRational::from_float(*z)).collect()
+                    });
+                    self.builder.point(&vertex, at).map_err(|e| e.to_string())?;
+                    made.push(vertex);
+                }
+                let point =
+                    |id: &String| Target { id: id.clone(), class: Class::Point, shape: None };
+                let ring: Vec<Target> =
+                    std::iter::once(t[0].clone()).chain(made.iter().map(point)).collect();
+                let mut parts = Vec::new();
+                let (spokes, sides): (Vec<String>, Vec<String>) =
+                    (1..n).map(|j| (format!("vertex{j}#spoke"), format!("vertex{j}#side"))).unzip();
+                for j in 1..n as usize {
+                    parts.push((
+                        K::EqualDistance,
+                        spokes[j - 1].as_str(),
+                        vec![&t[2], &t[0], &t[2], &ring[j]],
+                    ));
+                    let next = &ring[(j + 1) % n as usize];
+                    parts.push((
+                        K::EqualDistance,
+                        sides[j - 1].as_str(),
+                        vec![&ring[0], &ring[1], &ring[j], next],
+                    ));
+                }
+                for (kind, suffix, args) in parts {
+                    self.push(kind, &format!("{id}#{suffix}"), &args, None)?;
+                }
+                self.polygons.insert(key, made.clone());
+                (made, k)
+            }
+        };
+        let image =
+            Target { id: vertices[k as usize - 1].clone(), class: Class::Point, shape: None };
+        self.push(K::Coincident, id, &[&t[1], &image], None)
     }
 
     /// A point moved as a direction segment goes from its start to its end (an instance of a
@@ -951,6 +1029,14 @@ impl Lowering {
 
 fn abs(v: BigRational) -> BigRational {
     if v < BigRational::from_integer(0.into()) { -v } else { v }
+}
+
+/// A turn of `degrees` in `[0, 360)` as `k/n` of a full turn in lowest terms, for `n` up to
+/// 36 (the turns the turn prime carries, `gcs_rank::TURN_PERIOD`) and `k > 0`.
+fn turn_fraction(degrees: &BigRational) -> Option<(u64, u64)> {
+    let f = degrees / BigRational::from_integer(360.into());
+    let (k, n) = (f.numer().to_u64()?, f.denom().to_u64()?);
+    (k > 0 && n <= 36).then_some((k, n))
 }
 
 fn not_in_model(what: &str) -> String {

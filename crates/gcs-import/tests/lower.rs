@@ -463,8 +463,8 @@ fn b_splines_lower_on_their_control_points() {
 /// Patterns and mirrored segments lower into the equations they imply: a turn by 90° as
 /// perpendicular arms of equal length, by 180° as a symmetry about the pivot, a move along a
 /// direction segment as a parallelogram with a shared middle, a mirrored segment as the images
-/// of its end points on the other; a turn whose cosine is irrational is skipped, and a move said
-/// twice (a shared corner) is a note.
+/// of its end points on the other; a turn beyond the 36 divisions the analysis carries is
+/// skipped, and a move said twice (a shared corner) is a note.
 #[test]
 fn patterns_and_mirrored_segments_lower_to_their_equations() {
     let xy = |x: i64, y: i64| vec![n(x), n(y)];
@@ -493,7 +493,7 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
         vec![
             constraint("r90", Kind::Rotated, vec![w("a"), w("q90"), w("c")], Some(90)),
             constraint("r180", Kind::Rotated, vec![w("a"), w("q180"), w("c")], Some(-180)),
-            constraint("r60", Kind::Rotated, vec![w("a"), w("q90"), w("c")], Some(60)),
+            constraint("r1", Kind::Rotated, vec![w("a"), w("q90"), w("c")], Some(1)),
             constraint("tr", Kind::Translated, vec![w("t0"), w("t1"), start("d"), end("d")], None),
             constraint(
                 "again",
@@ -513,8 +513,8 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
     let reasons: Vec<(&str, &str)> =
         l.skipped.iter().map(|k| (k.item.as_str(), k.reason.as_str())).collect();
     assert_eq!(reasons.len(), 1, "{reasons:?}");
-    assert_eq!(reasons[0].0, "r60");
-    assert!(reasons[0].1.contains("a rotation by 60°"), "{}", reasons[0].1);
+    assert_eq!(reasons[0].0, "r1");
+    assert!(reasons[0].1.contains("a rotation by 1°"), "{}", reasons[0].1);
     assert_eq!(l.notes.len(), 2);
     assert_eq!(l.notes[0].item, "again");
     assert!(l.notes[0].reason.contains("`tr` says already"), "{}", l.notes[0].reason);
@@ -573,4 +573,68 @@ fn patterns_and_mirrored_segments_lower_to_their_equations() {
     assert!(a.redundant.is_empty());
     let back = System::from_ron_str(&sys.to_ron(), None).unwrap();
     assert_eq!(back.to_ron(), sys.to_ron());
+}
+
+/// A turn whose cosine or sine is irrational (by 60°, a circular pattern of 6) lowers to a
+/// vertex of the regular polygon about the pivot: helper vertices `<id>#vertex<j>`, each as far
+/// from the pivot as the turned point (`#spoke`) and each side as long as the first (`#side`,
+/// the last closing on the point), drawn exactly turned; a second turn of the same point about
+/// the same pivot (by 120°) reuses them. The analysis takes the turns from the drawing, modulo
+/// the turn prime: the two images are determined (2 DOF removed each).
+#[test]
+fn a_turn_by_60_degrees_is_a_vertex_of_a_regular_hexagon() {
+    let xy = |x: i64, y: i64| vec![n(x), n(y)];
+    let point = |id: &str, x: i64, y: i64| entity(id, Geometry::Point { at: xy(x, y) });
+    let w = |id: &str| Ref::whole(id);
+    let s = sketch(
+        vec![point("c", 0, 0), point("a", 2, 1), point("q60", 0, 2), point("q120", -2, 1)],
+        vec![
+            constraint("r60", Kind::Rotated, vec![w("a"), w("q60"), w("c")], Some(60)),
+            constraint("r120", Kind::Rotated, vec![w("a"), w("q120"), w("c")], Some(120)),
+        ],
+    );
+    let l = lower(&s);
+    assert!(l.skipped.is_empty(), "{:?}", l.skipped);
+    assert_eq!(
+        lowered(&l, "r60"),
+        (ConstraintKind::Coincident, strings(&["q60", "r60#vertex1"]), None)
+    );
+    assert_eq!(
+        lowered(&l, "r120"),
+        (ConstraintKind::Coincident, strings(&["q120", "r60#vertex2"]), None)
+    );
+    assert_eq!(
+        lowered(&l, "r60#vertex1#spoke"),
+        (ConstraintKind::EqualDistance, strings(&["c", "a", "c", "r60#vertex1"]), None)
+    );
+    assert_eq!(
+        lowered(&l, "r60#vertex2#side").1,
+        strings(&["a", "r60#vertex1", "r60#vertex2", "r60#vertex3"])
+    );
+    assert_eq!(
+        lowered(&l, "r60#vertex5#side").1,
+        strings(&["a", "r60#vertex1", "r60#vertex5", "a"]),
+        "the last side closes on the turned point"
+    );
+    let sys = &l.system;
+    assert!(sys.entity_by_id("r120#vertex1").is_none(), "one polygon per point and pivot");
+    // Vertex 2: `a` turned by 120° about the origin, to the drawing's rounding.
+    let v2: Vec<f64> = match &sys.entity(sys.entity_by_id("r60#vertex2").unwrap()).geometry {
+        gcs_model::entity::Geometry::Point { at: Some(at) } => {
+            at.iter().map(|x| num_traits::ToPrimitive::to_f64(x).unwrap()).collect()
+        }
+        other => panic!("{other:?}"),
+    };
+    let (cos, sin) = (-0.5, 3f64.sqrt() / 2.0);
+    assert!((v2[0] - (2.0 * cos - sin)).abs() < 1e-12);
+    assert!((v2[1] - (2.0 * sin + cos)).abs() < 1e-12);
+
+    // Unknowns: 4 points and 5 vertices = 18; equations: the hexagon 5 + 5, the two images
+    // 2 + 2 = 14, independent: 4 DOF with the 3 displacements (c and a free).
+    let a = gcs_analysis::analyze(sys, &Default::default()).unwrap();
+    assert_eq!(a.witness.modulus, Some(gcs_rank::TURN_PRIME));
+    assert!(a.witness.turns.contains(&6), "{:?}", a.witness.turns);
+    assert_eq!(a.rank - a.internal_equations, 14);
+    assert_eq!(a.dof + a.trivial_motions, 18 - 14);
+    assert!(a.redundant.is_empty());
 }

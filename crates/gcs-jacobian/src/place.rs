@@ -872,41 +872,43 @@ fn drawing(system: &System, layout: &Layout) -> Vec<f64> {
 }
 
 /// Whether the drawing shows a turn [`Placer::turned`] could take: two points that share a
-/// constraint with a circle, at its radius from its centre, turned from each other about it
-/// by an irrational fraction of a turn (the placement with turns is not tried otherwise).
+/// constraint with a circle or a point, as far from its centre (or the point) as each other,
+/// turned from each other about it by an irrational fraction of a turn (the placement with
+/// turns is not tried otherwise).
 pub(crate) fn drawn_turns(system: &System, layout: &Layout) -> bool {
     use crate::repr::Repr;
     if system.dim() != Dim::Two {
         return false;
     }
     let d = drawing(system, layout);
-    let mut on: Vec<Vec<EntityIdx>> = vec![Vec::new(); system.entities().len()];
+    let point = |e: EntityIdx| layout.repr(e) == Some(Repr::Point2);
+    let mut near: Vec<Vec<EntityIdx>> = vec![Vec::new(); system.entities().len()];
     for ci in system.constraint_indices() {
         let bases = system.constraint_base_entities(ci);
         for &c in &bases {
-            if layout.repr(c) != Some(Repr::Circle) {
+            if !point(c) && layout.repr(c) != Some(Repr::Circle) {
                 continue;
             }
             for &p in &bases {
-                if layout.repr(p) == Some(Repr::Point2) && !on[c.index()].contains(&p) {
-                    on[c.index()].push(p);
+                if p != c && point(p) && !near[c.index()].contains(&p) {
+                    near[c.index()].push(p);
                 }
             }
         }
     }
     let at = |e: EntityIdx| -> Option<&[f64]> { d.get(layout.columns(e)) };
-    on.iter().enumerate().filter(|(_, points)| points.len() > 1).any(|(c, points)| {
-        let Some(&[zx, zy, r]) = at(EntityIdx(c as u32)) else { return false };
-        let rel = |p: &EntityIdx| {
+    near.iter().enumerate().filter(|(_, points)| points.len() > 1).any(|(c, points)| {
+        let Some([zx, zy, ..]) = at(EntityIdx(c as u32)) else { return false };
+        let arm = |p: &EntityIdx| {
             let &[x, y] = at(*p)? else { return None };
-            let v = [x - zx, y - zy];
-            ((v[0].hypot(v[1]) - r.abs()).abs() <= 1e-7 * r.abs()).then_some(v)
+            Some([x - zx, y - zy])
         };
-        let vs: Vec<[f64; 2]> = points.iter().filter_map(rel).collect();
+        let vs: Vec<[f64; 2]> = points.iter().filter_map(arm).collect();
         vs.iter().enumerate().any(|(i, u)| {
             vs[i + 1..].iter().any(|v| {
+                let (lu, lv) = (u[0].hypot(u[1]), v[0].hypot(v[1]));
                 let angle = (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1]);
-                crate::turns::fraction(angle, 1e-7).is_some()
+                (lu - lv).abs() <= 1e-7 * lu && crate::turns::fraction(angle, 1e-7).is_some()
             })
         })
     })
@@ -1682,13 +1684,16 @@ impl Placer<'_> {
             [drawing[c], drawing[c + 1]]
         };
         let own = at(m);
+        // Centres: of placed circles, and placed points, of the ready constraints.
         let mut centres: Vec<EntityIdx> = Vec::new();
         for (ci, _) in ready {
             for &c in &self.bases[ci.index()] {
-                if self.layout.repr(c) == Some(Repr::Circle)
-                    && self.placed[c.index()]
-                    && !centres.contains(&c)
-                {
+                let centre = match self.layout.repr(c) {
+                    Some(Repr::Circle) => true,
+                    Some(Repr::Point2) => self.coincident[c.index()] != self.coincident[m.index()],
+                    _ => false,
+                };
+                if centre && self.placed[c.index()] && !centres.contains(&c) {
                     centres.push(c);
                 }
             }

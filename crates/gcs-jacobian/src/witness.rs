@@ -244,12 +244,14 @@ fn modular(
     // prime where it is not a square, whatever the random choices).
     // Only a construction that failed for want of a square root is tried modulo the next prime.
     let mut needs_root = true;
-    // The witness primes, then (the last resort) the turn prime with turns taken from the
-    // drawing: a regular hexagon closes only at 60°, which a random choice never hits, and
-    // whose sine is irrational (see `crate::turns`).
-    let primes = gcs_rank::WITNESS_PRIMES.iter().map(|q| (*q, false));
-    let last = place::drawn_turns(system, layout).then_some((gcs_rank::TURN_PRIME, true));
-    for (q, turns) in primes.chain(last) {
+    // The first witness prime; then, where the drawing shows turns by irrational fractions of
+    // a turn, the turn prime with those turns taken from the drawing (a regular hexagon closes
+    // only at 60°, which a random choice never hits, and whose sine is irrational: see
+    // `crate::turns`); then the other witness primes.
+    let (first, others) = gcs_rank::WITNESS_PRIMES.split_at(1);
+    let turn = place::drawn_turns(system, layout).then_some((gcs_rank::TURN_PRIME, true));
+    let primes = first.iter().map(|q| (*q, false)).chain(turn);
+    for (q, turns) in primes.chain(others.iter().map(|q| (*q, false))) {
         if !needs_root && !turns {
             continue;
         }

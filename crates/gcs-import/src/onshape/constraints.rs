@@ -505,8 +505,8 @@ pub(super) fn read(
 /// `localDirection2`. An element is a point, a segment (its end points), an arc (its centre and
 /// end points) or a circle (its centre, and an equal radius). Instances the file leaves empty
 /// are not made. Skipped whole: an open circular pattern (its angle is not in the file), a
-/// count that is not a positive integer, a circular pattern of other than 1, 2 or 4 instances
-/// (its turns are irrational), an element of another kind.
+/// count that is not a positive integer, a circular pattern of more than 36 instances, an
+/// element of another kind.
 fn pattern(
     ctype: &str,
     params: &Params<'_>,
@@ -557,11 +557,12 @@ fn pattern(
             .filter(|n| n.0.is_integer() && n.0 > BigRational::from_integer(0.into()))
             .ok_or("the pattern's count is not a positive integer")?;
         // Turns by multiples of 360°/N: rational (their cosines and sines) only for N = 1, 2
-        // or 4; the model has no exact constant for the others. Skipped whole, not in part.
-        if !(BigRational::from_integer(4.into()) / &count.0).is_integer() {
+        // or 4; the others become regular polygons (see the lowering), up to N = 36, the turns
+        // the turn prime carries. Skipped whole, not in part.
+        if count.0 > BigRational::from_integer(36.into()) {
             return Err(format!(
-                "a circular pattern of {} instances: turns by multiples of 360°/{}, whose cosines \
-                 or sines are irrational, are not in the gcs model yet (only 2 or 4 instances)",
+                "a circular pattern of {} instances: turns by multiples of 360°/{} are beyond the \
+                 36 divisions of a turn the analysis carries exactly",
                 count.0, count.0
             ));
         }

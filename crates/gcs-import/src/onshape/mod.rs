@@ -46,7 +46,7 @@
 //! | MIDPOINT | point, line or arc / midpoint, point, point | `Midpoint` / `Symmetric` about the midpoint |
 //! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line / segment, segment, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) / `Symmetric` of the segments (their carriers), or a note when mirrors of both their end points about the same line say it |
 //! | OFFSET | curve, offset (`localMaster`, `localOffset` or `local2`, `local0`) [, second curve, its offset (`localSecond`, `localSecondOffset` or `local3`, `local1`)] | `Parallel` / `Concentric` of each pair (`<id>#master`, once per operation; `<id>#second`), and for lines `EqualPointLineDistances` from the offsets' starts (the id); equal offsets of circles skipped |
-//! | CIRCULAR_PATTERN (closed), LINEAR_PATTERN | pivot or directions, instances `localInstance<k>,<i>[,<j>]` | `Rotated` by i·360°/N (the drawing's sense) / `Translated` by one step along a direction segment, per point of each instance (`<id>#<k>,<i>[,<j>]`), `Equal` radii of circles (`…#radius`) |
+//! | CIRCULAR_PATTERN (closed), LINEAR_PATTERN | pivot or directions, instances `localInstance<k>,<i>[,<j>]` | `Rotated` by i·360°/N (the drawing's sense; N ≤ 36) / `Translated` by one step along a direction segment, per point of each instance (`<id>#<k>,<i>[,<j>]`), `Equal` radii of circles (`…#radius`) |
 //! | DISTANCE (direction MINIMUM) | point–point, point–line, line–line, point–circle, circle–circle | `Distance` |
 //! | DISTANCE (HORIZONTAL, VERTICAL) | point, point | `DistanceX`, `DistanceY`, signed as the drawing shows |
 //! | LENGTH | line | `Length` (or `DistanceX`/`DistanceY` with a direction) |
