@@ -244,14 +244,15 @@ fn modular(
     // prime where it is not a square, whatever the random choices).
     // Only a construction that failed for want of a square root is tried modulo the next prime.
     let mut needs_root = true;
-    // The first witness prime; then, where the drawing shows turns by irrational fractions of
-    // a turn, the turn prime with those turns taken from the drawing (a regular hexagon closes
-    // only at 60°, which a random choice never hits, and whose sine is irrational: see
-    // `crate::turns`); then the other witness primes.
-    let (first, others) = gcs_rank::WITNESS_PRIMES.split_at(1);
+    // Where the drawing shows turns by irrational fractions of a turn, first the turn prime
+    // with those turns taken from the drawing (a regular hexagon closes only at 60°, which a
+    // random choice never hits, and whose sine is irrational: see `crate::turns`), kept at
+    // once only where the constraints hold every turn it took (otherwise it is the last
+    // resort); then the witness primes.
     let turn = place::drawn_turns(system, layout).then_some((gcs_rank::TURN_PRIME, true));
-    let primes = first.iter().map(|q| (*q, false)).chain(turn);
-    for (q, turns) in primes.chain(others.iter().map(|q| (*q, false))) {
+    let primes = gcs_rank::WITNESS_PRIMES.iter().map(|q| (*q, false));
+    let mut held_back: Option<Witness> = None;
+    for (q, turns) in turn.into_iter().chain(primes) {
         if !needs_root && !turns {
             continue;
         }
@@ -293,9 +294,14 @@ fn modular(
             }
             Ok(best)
         })?;
+        if turns {
+            // (Whatever the turn run found, the witness primes are tried: it does not say
+            // whether they need a root.)
+            needs_root = true;
+        }
         if let Some((x, plan, _, taken, forced)) = found {
             let turns = (3..=36).filter(|n| taken.divisions & (1 << n) != 0).collect();
-            return Ok(Some(Witness {
+            let witness = Witness {
                 coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
                 source: WitnessSource::Modular,
                 plan,
@@ -306,10 +312,14 @@ fn modular(
                 no_exact_witness: Some(why.clone()),
                 modulus: Some(q),
                 turns,
-            }));
+            };
+            if forced {
+                return Ok(Some(witness));
+            }
+            held_back = Some(witness);
         }
     }
-    Ok(None)
+    Ok(held_back)
 }
 
 /// Whether the turn `[m, b, c]` a placement took at a free choice (point `m` placed as `b`
