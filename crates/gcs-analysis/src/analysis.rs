@@ -479,14 +479,23 @@ fn generator_rows<F: Field>(generators: &[Vec<F>]) -> Vec<SparseRow<F>> {
 }
 
 /// The rows of `J·T`: each Jacobian row applied to the `k` generators. With a tolerance
-/// (float), a product that cancels below `tolerance` times the sum of its terms' magnitudes is
-/// rounding noise (a row invariant under a displacement gives exactly 0 over ℚ) and is
+/// (float), a product below `tolerance` times the larger of the sum of its terms' magnitudes
+/// (it cancelled) and the row's magnitude times the generator's largest entry (it is a
+/// displacement of something the witness has at a distance from the origin that is rounding
+/// noise: a fixed point drawn at the origin, which a numerical projection leaves 1e-13 away)
+/// is rounding noise — a row invariant under a displacement gives exactly 0 over ℚ — and is
 /// dropped.
 fn jt_rows<'j, F: Field>(
     jacobian: &'j Jacobian<F>,
     generators: &'j [Vec<F>],
     tolerance: Option<f64>,
 ) -> impl Iterator<Item = SparseRow<F>> + 'j {
+    let largest: Vec<f64> = match tolerance {
+        Some(_) => {
+            generators.iter().map(|g| g.iter().map(F::magnitude).fold(0.0, f64::max)).collect()
+        }
+        None => Vec::new(),
+    };
     jacobian.rows.iter().map(move |row| {
         SparseRow::from_entries(
             (0..generators.len())
@@ -496,12 +505,14 @@ fn jt_rows<'j, F: Field>(
                         return None;
                     }
                     if let Some(t) = tolerance {
-                        let terms: f64 = row
-                            .entries()
-                            .iter()
-                            .map(|(c, a)| a.magnitude() * generators[j][*c].magnitude())
-                            .sum();
-                        if v.magnitude() <= t * terms {
+                        let (terms, size) = row.entries().iter().fold(
+                            (0.0, 0.0),
+                            |(terms, size): (f64, f64), (c, a)| {
+                                let a = a.magnitude();
+                                (terms + a * generators[j][*c].magnitude(), size + a)
+                            },
+                        );
+                        if v.magnitude() <= t * terms.max(size * largest[j]) {
                             return None;
                         }
                     }
