@@ -46,7 +46,10 @@ pub(crate) fn run(input: &Path, output: Option<&Path>) -> ExitCode {
             );
             ExitCode::from(2)
         }
-        (Some(path), [one]) if !path.is_dir() => write(path, &one.system.to_ron()),
+        // (OUT ending in a separator names a directory, made if it does not exist.)
+        (Some(path), [one]) if !path.is_dir() && !names_a_directory(path) => {
+            write(path, &one.system.to_ron())
+        }
         (Some(dir), many) => {
             let mut status = ExitCode::SUCCESS;
             for l in many {
@@ -64,6 +67,12 @@ pub(crate) fn run(input: &Path, output: Option<&Path>) -> ExitCode {
             status
         }
     }
+}
+
+/// Whether `path` is written as a directory: it ends in a path separator (`out/`).
+fn names_a_directory(path: &Path) -> bool {
+    let text = path.as_os_str().to_string_lossy();
+    text.ends_with('/') || text.ends_with(std::path::MAIN_SEPARATOR)
 }
 
 /// `DIR/<model name>.ron`, with each `/`-separated part of the name made a safe file name.

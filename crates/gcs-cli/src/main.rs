@@ -195,9 +195,10 @@ enum Command {
     /// standard error.
     ///
     /// Without -o the model is printed (the file must hold one sketch). With -o OUT: a file
-    /// with one sketch is written to OUT, unless OUT is an existing directory; a file with
-    /// several (or any file, when OUT is a directory) is written below the directory OUT, one
-    /// file per sketch named after its model (`OUT/Bielle/Sketch005.ron`).
+    /// with one sketch is written to OUT, unless OUT is an existing directory or ends with `/`;
+    /// a file with several (or any file, when OUT is a directory) is written below the directory
+    /// OUT, made if needed, one file per sketch named after its model
+    /// (`OUT/Bielle/Sketch005.ron`).
     Convert {
         /// The CAD file.
         #[arg(value_name = "FILE")]

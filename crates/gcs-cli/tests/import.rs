@@ -100,6 +100,11 @@ fn convert_writes_ron_that_reads_back() {
     let written = dir.join("flags/g2.ron");
     let text = std::fs::read_to_string(&written).unwrap();
     assert_eq!(gcs_model::System::from_ron_str(&text, None).unwrap().name(), "flags/g2");
+    // One sketch, to a directory not made yet, written with a trailing slash.
+    let new = format!("{}/new/", dir.to_str().unwrap());
+    let (code, _, err) = gcs(&["convert", &format!("{SLVS}/mapping2d.slvs"), "-o", &new]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.join("new/mapping2d/g2.ron").is_file(), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 
     let (code, _, err) = gcs(&["convert", "README.md"]);
