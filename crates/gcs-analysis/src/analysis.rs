@@ -479,12 +479,11 @@ fn generator_rows<F: Field>(generators: &[Vec<F>]) -> Vec<SparseRow<F>> {
 }
 
 /// The rows of `J·T`: each Jacobian row applied to the `k` generators. With a tolerance
-/// (float), a product below `tolerance` times the larger of the sum of its terms' magnitudes
-/// (it cancelled) and the row's magnitude times the generator's largest entry (it is a
-/// displacement of something the witness has at a distance from the origin that is rounding
-/// noise: a fixed point drawn at the origin, which a numerical projection leaves 1e-13 away)
-/// is rounding noise — a row invariant under a displacement gives exactly 0 over ℚ — and is
-/// dropped.
+/// (float), a product below `tolerance · Σ|row entries| · max|generator entries|` is rounding
+/// noise and is dropped: a row invariant under a displacement gives exactly 0 over ℚ, and in
+/// floating point either a cancellation or a displacement of something the witness has at a
+/// distance from the origin that is itself noise (a fixed point drawn at the origin, which a
+/// numerical projection leaves 1e-13 away).
 fn jt_rows<'j, F: Field>(
     jacobian: &'j Jacobian<F>,
     generators: &'j [Vec<F>],
@@ -505,14 +504,8 @@ fn jt_rows<'j, F: Field>(
                         return None;
                     }
                     if let Some(t) = tolerance {
-                        let (terms, size) = row.entries().iter().fold(
-                            (0.0, 0.0),
-                            |(terms, size): (f64, f64), (c, a)| {
-                                let a = a.magnitude();
-                                (terms + a * generators[j][*c].magnitude(), size + a)
-                            },
-                        );
-                        if v.magnitude() <= t * terms.max(size * largest[j]) {
+                        let size: f64 = row.entries().iter().map(|(_, a)| a.magnitude()).sum();
+                        if v.magnitude() <= t * size * largest[j] {
                             return None;
                         }
                     }
@@ -708,7 +701,8 @@ pub(crate) fn redundancies(
 }
 
 /// A bound on the probability that a random point of the constraints' solution set modulo the
-/// witness's prime `p` (`2^61 − 1` or another of [`gcs_rank::WITNESS_PRIMES`]) has a rank below the generic rank `r`: it must then lie on the
+/// witness's prime `p` (`2^61 − 1`, another of [`gcs_rank::WITNESS_PRIMES`], or
+/// [`gcs_rank::TURN_PRIME`]) has a rank below the generic rank `r`: it must then lie on the
 /// hypersurface where the `r × r` minors vanish, a polynomial of degree at most `3r` in the
 /// coordinates (each Jacobian entry has degree at most 3), which a uniformly random point hits
 /// with probability at most `3r / p` (Schwartz–Zippel). Heuristic: the witness's coordinates
@@ -931,7 +925,10 @@ fn analyze_in_field(
     Ok(Analysis {
         backend: options.backend,
         proof: outcome.proof,
-        witness_error_bound: modular.then(|| modular_error_bound(outcome.rank)),
+        // (Not for a witness whose turns were taken from the drawing and not all held by the
+        // constraints: its coordinates are not all random choices.)
+        witness_error_bound: (modular && witness.genericity_tested)
+            .then(|| modular_error_bound(outcome.rank)),
         seed: options.witness.seed,
         witness,
         unknowns,

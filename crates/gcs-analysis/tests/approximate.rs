@@ -315,6 +315,8 @@ fn hexagon_agrees_with_float(text: &str, turns: &[u32], tested: bool) {
         assert!(turns.iter().all(|n| taken.contains(n)), "{backend:?}: {taken:?}");
         assert!(taken.iter().all(|n| turns.iter().any(|t| t % n == 0)), "{backend:?}: {taken:?}");
         assert_eq!(a.witness.genericity_tested, tested, "{backend:?}");
+        // The probability bound rests on random choices: not given for a turn left free.
+        assert_eq!(a.witness_error_bound.is_some(), tested, "{backend:?}");
         assert_eq!((a.rank, a.dof_absolute), (float.rank, float.dof_absolute), "{backend:?}");
         assert_eq!((a.trivial_motions, float.trivial_motions), (1, 1), "{backend:?}");
         assert_eq!(a.dof, float.dof, "{backend:?}");

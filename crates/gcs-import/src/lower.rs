@@ -556,8 +556,8 @@ impl Lowering {
     /// `<id>#arm-image`) perpendicular (`<id>`) and of equal length (`<id>#equal`) — which
     /// does not say which of the two senses, a discrete choice the drawing makes; by 0°, the
     /// two coincide. A point the sketch joins to the pivot: its image is the pivot (a note
-    /// when the sketch joins that too). Other turns need the cosine or sine of the angle,
-    /// irrational.
+    /// when the sketch joins that too). Other turns, whose cosine or sine is irrational, are a
+    /// vertex of a regular polygon ([`Self::turned`]) up to 36 vertices.
     fn rotated(&mut self, id: &str, t: &[Target], degrees: &BigRational) -> Result<(), String> {
         let full = BigRational::from_integer(360.into());
         let turn = degrees - (degrees / &full).floor() * &full;

@@ -90,8 +90,8 @@ pub(crate) struct PlaceOptions {
     /// search), so that a sketch no solve closes costs a bounded time more.
     pub(crate) algebra_budget: std::rc::Rc<std::cell::Cell<u64>>,
     /// Modulo the turn prime (the last resort): a point drawn at a placed point turned about a
-    /// circle's centre by an irrational fraction of a turn is placed there exactly
-    /// ([`Placer::turned`]); what was taken is told here.
+    /// circle's centre or a point by an irrational fraction of a turn is placed there exactly
+    /// ([`Placer::place_turned`]); what was taken is told here.
     pub(crate) turns: Option<std::rc::Rc<std::cell::RefCell<TurnsTaken>>>,
 }
 
@@ -102,7 +102,8 @@ pub(crate) struct TurnsTaken {
     pub(crate) divisions: u64,
     /// The turns that were a free choice (the point had solutions of positive dimension: the
     /// turn may be a special position, not only a root the constraints force): the point
-    /// turned, the placed point it was turned from, and the circle about whose centre.
+    /// turned, the placed point it was turned from, and the circle (about its centre) or the
+    /// point about which.
     pub(crate) free: Vec<[EntityIdx; 3]>,
 }
 
@@ -871,7 +872,7 @@ fn drawing(system: &System, layout: &Layout) -> Vec<f64> {
     d
 }
 
-/// Whether the drawing shows a turn [`Placer::turned`] could take: two points that share a
+/// Whether the drawing shows a turn [`Placer::place_turned`] could take: two points that share a
 /// constraint with a circle or a point, as far from its centre (or the point) as each other,
 /// turned from each other about it by an irrational fraction of a turn (the placement with
 /// turns is not tried otherwise).
@@ -905,11 +906,7 @@ pub(crate) fn drawn_turns(system: &System, layout: &Layout) -> bool {
         };
         let vs: Vec<[f64; 2]> = points.iter().filter_map(arm).collect();
         vs.iter().enumerate().any(|(i, u)| {
-            vs[i + 1..].iter().any(|v| {
-                let (lu, lv) = (u[0].hypot(u[1]), v[0].hypot(v[1]));
-                let angle = (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1]);
-                (lu - lv).abs() <= 1e-7 * lu && crate::turns::fraction(angle, 1e-7).is_some()
-            })
+            vs[i + 1..].iter().any(|v| crate::turns::drawn([0.0, 0.0], *u, *v).is_some())
         })
     })
 }
@@ -1662,13 +1659,17 @@ impl Placer<'_> {
     }
 
     /// With the turn table ([`PlaceOptions::turns`]): places the single 2D point being placed
-    /// where the drawing has it, relative to a placed point at the same distance from the centre
-    /// of a placed circle of its ready constraints: that point turned about the centre by the
-    /// fraction `k/N` of a turn the drawing shows (to 1e-7 rad; `N ≤ 36`, not a multiple of
-    /// 90°), exactly. Kept only where every ready constraint holds there exactly and the point
-    /// is acceptable; `freedom` (the dimension of the point's solutions) says whether it was a
-    /// free choice.
-    fn turned(&mut self, ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)], freedom: usize) -> bool {
+    /// (or its coincident copies) where the drawing has it relative to a placed point as far as
+    /// it from a centre — of a placed circle, or a placed point, of its ready constraints: that
+    /// point turned about the centre by the fraction `k/N` of a turn the drawing shows
+    /// ([`crate::turns::drawn`]: `N ≤ 36`, not a multiple of 90°), exactly. Kept only where
+    /// every ready constraint holds there exactly and the point is acceptable; `freedom` (the
+    /// dimension of the point's solutions) says whether it was a free choice.
+    fn place_turned(
+        &mut self,
+        ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)],
+        freedom: usize,
+    ) -> bool {
         use crate::repr::Repr;
         let Some((turns, drawing)) = self.turns else { return false };
         // One point, or coincident copies of it.
@@ -1712,18 +1713,8 @@ impl Placer<'_> {
         for c in centres {
             let zc = self.layout.columns(c).start;
             let z = [drawing[zc], drawing[zc + 1]];
-            let radius = (own[0] - z[0]).hypot(own[1] - z[1]);
-            if radius.is_nan() || radius <= 0.0 {
-                continue;
-            }
             for &b in &points {
-                let w = at(b);
-                let (u, v) = ([w[0] - z[0], w[1] - z[1]], [own[0] - z[0], own[1] - z[1]]);
-                if (u[0].hypot(u[1]) - radius).abs() > 1e-7 * radius {
-                    continue;
-                }
-                let angle = (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1]);
-                let Some((k, n)) = crate::turns::fraction(angle, 1e-7) else { continue };
+                let Some((k, n)) = crate::turns::drawn(z, at(b), own) else { continue };
                 let Some([cos, sin]) = turns.turn(k, n) else { continue };
                 let (cos, sin) = (Num::P(cos), Num::P(sin));
                 let centre = [self.coords[zc].clone(), self.coords[zc + 1].clone()];
@@ -1825,7 +1816,7 @@ impl Placer<'_> {
         }
         let space = qla::solve(n, &linear)?;
         let freedom = space.basis.len().saturating_sub(usize::from(homogeneous) + quads.len());
-        if self.turns.is_some() && self.turned(ready, freedom) {
+        if self.turns.is_some() && self.place_turned(ready, freedom) {
             return Some(freedom);
         }
         // A free line or plane gets a normal of rational length (a Pythagorean direction near

@@ -8,7 +8,8 @@ use gcs_rank::{BigRational, Field, ModQ, RankError, Rat, modulus};
 
 /// The exact number of the placement: a rational (small values stay in machine words), or an
 /// integer modulo a prime ([`ModQ`]: the prime of the [`gcs_rank::with_modulus`] the placement
-/// runs in, one of [`gcs_rank::WITNESS_PRIMES`], all `≡ 3 mod 4`) when the placement runs over
+/// runs in, one of [`gcs_rank::WITNESS_PRIMES`] or [`gcs_rank::TURN_PRIME`], all `≡ 3 mod 4`)
+/// when the placement runs over
 /// that field (a *modular* witness: square
 /// roots exist for half the residues, where a rational placement needs a perfect square).
 ///

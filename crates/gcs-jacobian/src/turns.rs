@@ -104,6 +104,19 @@ pub(crate) fn fraction(angle: f64, tolerance: f64) -> Option<(i64, u64)> {
     None
 }
 
+/// The turn `k/n` the drawing shows from `b` to `m` about `z` (points in floating point):
+/// the two as far from `z` as each other (to 1e-7 relative), at an angle [`fraction`] reads
+/// (to 1e-7 rad).
+pub(crate) fn drawn(z: [f64; 2], b: [f64; 2], m: [f64; 2]) -> Option<(i64, u64)> {
+    let (u, v) = ([b[0] - z[0], b[1] - z[1]], [m[0] - z[0], m[1] - z[1]]);
+    let (lu, lv) = (u[0].hypot(u[1]), v[0].hypot(v[1]));
+    if lv.is_nan() || lv <= 0.0 || (lu - lv).abs() > 1e-7 * lv {
+        return None;
+    }
+    let angle = (u[0] * v[1] - u[1] * v[0]).atan2(u[0] * v[0] + u[1] * v[1]);
+    fraction(angle, 1e-7)
+}
+
 fn gcd(mut a: u64, mut b: u64) -> u64 {
     while b != 0 {
         (a, b) = (b, a % b);

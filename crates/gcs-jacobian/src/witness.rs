@@ -286,9 +286,10 @@ fn modular(
                 let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
                 let j = assemble(system, layout, &p, &x, &sketch);
                 let taken = taken.take();
-                let forced = taken.free.iter().all(|t| turn_is_forced(layout, &x, &j, t));
-                let r = gcs_rank::echelon_rank(j.ncols, j.rows).0;
-                if best.as_ref().is_none_or(|b| r > b.2) {
+                let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
+                let forced = turns_are_forced(layout, &x, &j, r, &taken.free);
+                // (The larger rank; at the same rank, a witness whose turns are held.)
+                if best.as_ref().is_none_or(|b| (r, forced) > (b.2, b.4)) {
                     best = Some((x.iter().map(|v| v.value()).collect(), p, r, taken, forced));
                 }
             }
@@ -306,7 +307,7 @@ fn modular(
                 source: WitnessSource::Modular,
                 plan,
                 // A free choice turned as drawn may be a special position, unless the
-                // constraints hold its turn (see `turn_is_forced`).
+                // constraints hold its turn (see `turns_are_forced`).
                 genericity_tested: forced,
                 sketch_rejected: sketch_rejected.clone(),
                 no_exact_witness: Some(why.clone()),
@@ -322,32 +323,47 @@ fn modular(
     Ok(held_back)
 }
 
-/// Whether the turn `[m, b, c]` a placement took at a free choice (point `m` placed as `b`
-/// turned about the centre of circle `c`) is held by the constraints at the witness `x`, to
-/// first order: the differential of the angle from `b` to `m` about the centre is a
-/// combination of the Jacobian's rows, so no motion the constraints allow there changes it.
-/// Where it is not, the turn was a choice the constraints left free, and the drawing's value
-/// may be a special position.
-fn turn_is_forced(layout: &Layout, x: &[ModQ], j: &Jacobian<ModQ>, turn: &[EntityIdx; 3]) -> bool {
-    let [m, b, c] = *turn;
-    let (mc, bc, zc) = (layout.columns(m).start, layout.columns(b).start, layout.columns(c).start);
-    let u = [x[bc].sub(&x[zc]), x[bc + 1].sub(&x[zc + 1])];
-    let v = [x[mc].sub(&x[zc]), x[mc + 1].sub(&x[zc + 1])];
-    let cross = u[0].mul(&v[1]).sub(&u[1].mul(&v[0]));
-    let dot = u[0].mul(&v[0]).add(&u[1].mul(&v[1]));
-    // d angle ∝ dot · d cross − cross · d dot, in u (the columns of b) and v (those of m); the
-    // centre moves both.
-    let du = [dot.mul(&v[1]).sub(&cross.mul(&v[0])), dot.mul(&v[0]).neg().sub(&cross.mul(&v[1]))];
-    let dv = [dot.mul(&u[1]).neg().sub(&cross.mul(&u[0])), dot.mul(&u[0]).sub(&cross.mul(&u[1]))];
-    let mut entries = Vec::new();
-    for k in 0..2 {
-        entries.push((bc + k, du[k]));
-        entries.push((mc + k, dv[k]));
-        entries.push((zc + k, du[k].add(&dv[k]).neg()));
+/// Whether the turns `[m, b, c]` a placement took at free choices (point `m` placed as `b`
+/// turned about `c`, a circle's centre or a point) are held by the constraints at the witness
+/// `x` of Jacobian `j` (of rank `rank`), to first order: the differential of each angle from
+/// `b` to `m` about the centre is a combination of the Jacobian's rows, so no motion the
+/// constraints allow there changes it. Where one is not, the turn was a choice the constraints
+/// left free, and the drawing's value may be a special position. (First order only: a free
+/// turn at an extreme of its angle would pass.)
+fn turns_are_forced(
+    layout: &Layout,
+    x: &[ModQ],
+    j: &Jacobian<ModQ>,
+    rank: usize,
+    turns: &[[EntityIdx; 3]],
+) -> bool {
+    if turns.is_empty() {
+        return true;
     }
-    let row = gcs_rank::SparseRow::from_entries(entries);
-    let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
-    r == gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned().chain([row])).0
+    let differential = |&[m, b, c]: &[EntityIdx; 3]| {
+        let (mc, bc, zc) =
+            (layout.columns(m).start, layout.columns(b).start, layout.columns(c).start);
+        let u = [x[bc].sub(&x[zc]), x[bc + 1].sub(&x[zc + 1])];
+        let v = [x[mc].sub(&x[zc]), x[mc + 1].sub(&x[zc + 1])];
+        let cross = u[0].mul(&v[1]).sub(&u[1].mul(&v[0]));
+        let dot = u[0].mul(&v[0]).add(&u[1].mul(&v[1]));
+        // d angle ∝ dot · d cross − cross · d dot, in u (the columns of b) and v (those of m);
+        // the centre moves both.
+        let du =
+            [dot.mul(&v[1]).sub(&cross.mul(&v[0])), dot.mul(&v[0]).neg().sub(&cross.mul(&v[1]))];
+        let dv =
+            [dot.mul(&u[1]).neg().sub(&cross.mul(&u[0])), dot.mul(&u[0]).sub(&cross.mul(&u[1]))];
+        let mut entries = Vec::new();
+        for k in 0..2 {
+            entries.push((bc + k, du[k]));
+            entries.push((mc + k, dv[k]));
+            entries.push((zc + k, du[k].add(&dv[k]).neg()));
+        }
+        gcs_rank::SparseRow::from_entries(entries)
+    };
+    // Each differential is in the row space exactly when all of them together add no rank.
+    let rows = j.rows.iter().cloned().chain(turns.iter().map(differential));
+    gcs_rank::echelon_rank(j.ncols, rows).0 == rank
 }
 
 /// Finds a witness of `system` (see the module documentation).

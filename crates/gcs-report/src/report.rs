@@ -280,8 +280,9 @@ pub struct Report {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub witness_prime: Option<u64>,
     /// At a modular witness modulo the turn prime (the last resort): the `N` of each turn by
-    /// `k/N` of a full turn that the placement took from the drawing (a regular hexagon's
-    /// vertices, each the one before turned by 60°: `[3, 6]`), ascending. Absent otherwise.
+    /// `k/N` of a full turn that the placement took from the drawing, ascending (a regular
+    /// hexagon's vertices, turned from placed ones by 60° or 120°: `[3, 6]`). Absent
+    /// otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub witness_turns: Vec<u32>,
     /// The float backend's constraints whose decision lies within the ambiguity band of its
