@@ -9,8 +9,9 @@ use std::iter::{Product, Sum};
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{FromPrimitive, Signed, ToPrimitive};
+use num_traits::{FromPrimitive, One, Signed, ToPrimitive, Zero};
 
 use crate::Field;
 use crate::error::RankError;
@@ -198,10 +199,73 @@ fn div_small(a: i64, b: i64, c: i64, d: i64) -> Rat {
     from_parts(if c < 0 { -num } else { num }, den)
 }
 
-/// `op` on the big forms of `x` and `y`, for the operations with a big operand.
+/// `n / g`, skipping the division when `g` is one.
+fn div_by(n: &BigInt, g: &BigInt) -> BigInt {
+    if g.is_one() { n.clone() } else { n / g }
+}
+
+/// The fraction `num/den` known to be in lowest terms with `den > 0`.
+fn from_lowest(num: BigInt, den: BigInt) -> Rat {
+    Rat::from(BigRational::new_raw(num, den))
+}
+
+/// `x ± y` with a big operand, in lowest terms by Knuth's rule (as [`add_small`]): with
+/// `g = gcd(b, d)` and `t = a·(d/g) ± c·(b/g)`, only a divisor of `g` can divide both `t` and
+/// the denominator, so the only gcds taken are of the denominators and of `t` with `g`, never
+/// of the full numerator and denominator (num-rational's operators take that one too).
 #[inline(never)]
-fn big_binop(x: &Rat, y: &Rat, op: impl FnOnce(&BigRational, &BigRational) -> BigRational) -> Rat {
-    Rat::from(op(&x.big_cow(), &y.big_cow()))
+fn big_add(x: &Rat, y: &Rat, subtract: bool) -> Rat {
+    let (p, q) = (x.big_cow(), y.big_cow());
+    let (a, b, c, d) = (p.numer(), p.denom(), q.numer(), q.denom());
+    let combine = |l: BigInt, r: BigInt| if subtract { l - r } else { l + r };
+    if b == d {
+        let t = combine(a.clone(), c.clone());
+        if t.is_zero() {
+            return Rat::ZERO;
+        }
+        let g = t.gcd(b);
+        return from_lowest(div_by(&t, &g), div_by(b, &g));
+    }
+    let g = b.gcd(d);
+    if g.is_one() {
+        // gcd(a·d ± c·b, b·d) = 1 when gcd(b, d) = 1.
+        let t = combine(a * d, c * b);
+        if t.is_zero() {
+            return Rat::ZERO;
+        }
+        return from_lowest(t, b * d);
+    }
+    let (b1, d1) = (b / &g, d / &g);
+    let t = combine(a * &d1, c * &b1);
+    if t.is_zero() {
+        return Rat::ZERO;
+    }
+    let g2 = t.gcd(&g);
+    from_lowest(div_by(&t, &g2), b1 * div_by(d, &g2))
+}
+
+/// `x · y` (or `x / y` when `divide`, `y ≠ 0`) with a big operand, in lowest terms by
+/// cancelling across (`gcd(a, d)` and `gcd(c, b)`), without the gcd of the full product.
+#[inline(never)]
+fn big_mul(x: &Rat, y: &Rat, divide: bool) -> Rat {
+    let (p, q) = (x.big_cow(), y.big_cow());
+    let (a, b) = (p.numer(), p.denom());
+    // y or its reciprocal, as c/d with d > 0.
+    let (c, d) = if divide {
+        if q.numer().is_negative() {
+            (-q.denom(), -q.numer())
+        } else {
+            (q.denom().clone(), q.numer().clone())
+        }
+    } else {
+        (q.numer().clone(), q.denom().clone())
+    };
+    if a.is_zero() || c.is_zero() {
+        return Rat::ZERO;
+    }
+    let g1 = a.gcd(&d);
+    let g2 = c.gcd(b);
+    from_lowest(div_by(a, &g1) * div_by(&c, &g2), div_by(b, &g2) * div_by(&d, &g1))
 }
 
 impl Rat {
@@ -553,7 +617,7 @@ fn add_ref(x: &Rat, y: &Rat) -> Rat {
         (&Repr::Small { num: a, den: b }, &Repr::Small { num: c, den: d }) => {
             add_small(a as i128, b as u64, c as i128, d as u64)
         }
-        _ => big_binop(x, y, |p, q| p + q),
+        _ => big_add(x, y, false),
     }
 }
 
@@ -563,7 +627,7 @@ fn sub_ref(x: &Rat, y: &Rat) -> Rat {
         (&Repr::Small { num: a, den: b }, &Repr::Small { num: c, den: d }) => {
             add_small(a as i128, b as u64, -(c as i128), d as u64)
         }
-        _ => big_binop(x, y, |p, q| p - q),
+        _ => big_add(x, y, true),
     }
 }
 
@@ -574,7 +638,7 @@ fn mul_ref(x: &Rat, y: &Rat) -> Rat {
             let (num, den) = mul_parts(a, b, c, d);
             from_parts(num, den)
         }
-        _ => big_binop(x, y, |p, q| p * q),
+        _ => big_mul(x, y, false),
     }
 }
 
@@ -583,7 +647,7 @@ fn div_ref(x: &Rat, y: &Rat) -> Rat {
     match (&x.0, &y.0) {
         (_, Repr::Small { num: 0, .. }) => panic!("attempt to divide a Rat by zero"),
         (&Repr::Small { num: a, den: b }, &Repr::Small { num: c, den: d }) => div_small(a, b, c, d),
-        _ => big_binop(x, y, |p, q| p / q),
+        _ => big_mul(x, y, true),
     }
 }
 
@@ -874,6 +938,16 @@ mod tests {
         v.push(Rat::from(big(&-pow2(64), &BigInt::from(3))));
         v.push(Rat::from(big(&BigInt::from(7), &pow2(63))));
         v.push(Rat::from(big(&BigInt::from(3).pow(90), &BigInt::from(5).pow(40))));
+        // Big values whose denominators share factors (the cancellations of the big sums and
+        // products), with either sign.
+        let (two, three, five, seven) =
+            (BigInt::from(2), BigInt::from(3), BigInt::from(5), BigInt::from(7));
+        v.push(Rat::from(big(&(pow2(70) * 3 + 1), &(five.pow(30) * 7))));
+        v.push(Rat::from(big(&-three.pow(50), &(pow2(80) * 77))));
+        v.push(Rat::from(big(&(pow2(65) + 1), &(two.pow(30) * three.pow(30)))));
+        v.push(Rat::from(big(&(seven.pow(40) - BigInt::one()), &(five.pow(30) * 6))));
+        let n: BigInt = five.pow(31) * 7 + 3;
+        v.push(Rat::from(big(&-n, &(pow2(81) * 11))));
         v
     }
 
