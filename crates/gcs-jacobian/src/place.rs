@@ -421,6 +421,8 @@ struct Placer<'a> {
     /// (NaN where an entity has none), and the turns taken.
     turns: Option<(crate::turns::Turns, &'a [f64])>,
     taken: TurnsTaken,
+    /// Over ℚ: the value of [`qla::rational_work`] at which the run stops ([`RATIONAL_WORK`]).
+    work_limit: u64,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -664,6 +666,14 @@ fn with_implied(system: &System, tangencies: bool) -> Option<System> {
 /// tangent segments needs a failed run above 768 bits before its success.)
 const HEIGHT_CAP: u64 = 1024;
 
+/// The work ([`qla::rational_work`]: the squared word lengths of the operands of the
+/// operations on big rationals) after which a placement over ℚ stops, in all its runs.
+/// Numbers whose heights compound along a sketch's chains of constructions make a run that is
+/// going to fail slow before it fails (the height caps are checked between runs); the modular
+/// witness takes over. On the CAD samples every rational placement that succeeded took at most
+/// 760,000 (0.6 s at most, 0.08 s but once), the failed ones up to 60,000,000 (6 s).
+const RATIONAL_WORK: u64 = 2_000_000;
+
 /// The height in bits beyond which the rational placement tries no other order once the
 /// first has failed (see [`place_in`]). Another order closes what a small sketch's first order
 /// could not (one equal distance between point–segment pairs), but none of the CAD samples'
@@ -749,6 +759,7 @@ fn place_in(
     let (mut epoch, mut run, mut learnt, mut retries) = (0, 0usize, 0, 0);
     let mut failure = None;
     let mut any_no_root = false;
+    let work_limit = qla::rational_work().saturating_add(RATIONAL_WORK);
     loop {
         let mut group = vec![EntityIdx(0); nent];
         let mut members = vec![Vec::new(); nent];
@@ -797,6 +808,7 @@ fn place_in(
             algebra_budget: options.algebra_budget.get(),
             turns: turns.map(|t| (t, &drawing[..])),
             taken: TurnsTaken::default(),
+            work_limit,
         };
         p.choose_variants();
         if options.modular {
@@ -824,7 +836,7 @@ fn place_in(
         // modular witness, whose numbers have one size, takes over.
         let height = if options.modular { 0 } else { height_bits(&p.coords) };
         failed_height = failed_height.max(height);
-        if height > HEIGHT_CAP {
+        if height > HEIGHT_CAP || (!options.modular && qla::rational_work() > work_limit) {
             failure.get_or_insert(f.public);
             break;
         }
@@ -1253,6 +1265,10 @@ impl Placer<'_> {
         let mut failures: Vec<RunFailure> = Vec::new();
         let mut steps = 0;
         while let Some((s, _, i)) = heap.pop() {
+            if !self.modular && qla::rational_work() > self.work_limit {
+                // (Over ℚ, out of work: see [`RATIONAL_WORK`].)
+                break;
+            }
             let g = EntityIdx(i);
             if self.placed[g.index()] || s != score[g.index()] || failed_at[g.index()] == Some(s) {
                 continue;

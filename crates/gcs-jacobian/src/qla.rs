@@ -100,12 +100,39 @@ impl Num {
         p: impl Fn(&ModQ, &ModQ) -> ModQ,
     ) -> Num {
         match (a, b) {
-            (Num::R(x), Num::R(y)) => Num::R(r(x, y)),
+            (Num::R(x), Num::R(y)) => {
+                count_work(x, y);
+                Num::R(r(x, y))
+            }
             (Num::P(x), Num::P(y)) => Num::P(p(x, y)),
             (Num::R(x), Num::P(y)) => Num::P(p(&residue(x), y)),
             (Num::P(x), Num::R(y)) => Num::P(p(x, &residue(y))),
         }
     }
+}
+
+thread_local! {
+    /// The work of the rational operations of [`Num`] on this thread (see [`rational_work`]).
+    static WORK: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Counts an operation on two rationals with a big operand: the square of the larger one's
+/// length in 64-bit words (the cost of multiplying, and of the gcds that keep a result in
+/// lowest terms). Operations in machine words are not counted: their cost grows only with the
+/// sketch's size, not with the heights a construction compounds.
+fn count_work(x: &Rat, y: &Rat) {
+    if x.is_small() && y.is_small() {
+        return;
+    }
+    let words = x.height_bits().max(y.height_bits()) / 64 + 1;
+    WORK.with(|w| w.set(w.get().wrapping_add(words * words)));
+}
+
+/// The work counted so far on this thread by the rational operations of [`Num`]: a measure of
+/// the time spent in them that does not depend on the machine (differences of it bound the
+/// placement over ℚ, see `place`).
+pub(crate) fn rational_work() -> u64 {
+    WORK.with(std::cell::Cell::get)
 }
 
 impl PartialEq for Num {
