@@ -277,6 +277,8 @@ fn recognise(
         }
     }
     points.sort_by_key(|(e, _)| *e);
+    // (A point that is also a named segment's end point came twice.)
+    points.dedup_by_key(|(e, _)| *e);
     lines.sort();
     let mut out = Vec::new();
     for i in 0..points.len() {
@@ -460,7 +462,29 @@ fn line2(system: &System, l: EntityIdx) -> Option<Vec<BigRational>> {
 
 #[cfg(test)]
 mod tests {
+    use gcs_model::System;
     use gcs_model::number::parse_exact;
+
+    use super::{Position, recognise};
+
+    #[test]
+    fn a_point_named_beside_its_segment_is_not_coincident_with_itself() {
+        let s = System::from_ron_str(
+            r#"System(dim: 2, entities: [
+                Point(id: "a", at: [0, 0]), Point(id: "b", at: [4, 0]), Point(id: "c", at: [4, 0]),
+                Segment(id: "s", from: "a", to: "b"),
+            ], constraints: [])"#,
+            None,
+        )
+        .unwrap();
+        let e = |id: &str| s.entity_by_id(id).unwrap();
+        // The segment names a and b; a and c are named again: only b and c coincide.
+        let found = recognise(&s, &[e("s"), e("a"), e("c")], &[]);
+        let coincident: Vec<_> =
+            found.iter().filter(|c| c.position == Position::Coincident).collect();
+        assert_eq!(coincident.len(), 1, "{found:?}");
+        assert_eq!(coincident[0].entities, vec![e("b"), e("c")]);
+    }
 
     #[test]
     fn precision_follows_the_written_decimals() {
