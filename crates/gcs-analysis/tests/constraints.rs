@@ -73,6 +73,13 @@ const CASES: &[(&[u8], &str)] = &[
     (TWO, r#"EqualDistance(id: "c", a: "l", b: "p", c: "q", d: "r")"#),
     (TWO, r#"EqualDistance(id: "c", a: "p", b: "l", c: "q", d: "rs")"#),
     (TWO, r#"EqualDistance(id: "c", a: "p", b: "l", c: "q", d: "l")"#),
+    // The gap of two circles is the difference of their radii (an offset's, when concentric).
+    (TWO, r#"EqualDistance(id: "c", a: "k", b: "k2", c: "p", d: "q")"#),
+    (TWO, r#"EqualDistance(id: "c", a: "p", b: "l", c: "k2", d: "k")"#),
+    (
+        TWO,
+        r#"Concentric(id: "c0", a: "k", b: "k2"), EqualDistance(id: "c", a: "k", b: "k2", c: "q", d: "rs")"#,
+    ),
     (THREE, r#"Angle(id: "c", a: "l", b: "a")"#),
     (THREE, r#"Angle(id: "c", a: "a", b: "b")"#),
     (BOTH, r#"Parallel(id: "c", a: "l", b: "m")"#),
@@ -342,6 +349,12 @@ fn equalities_and_ratios_are_redundant_where_implied() {
             r#"Distance(id: "x1", a: "p", b: "l"), Distance(id: "x2", a: "q", b: "rs"),
                EqualDistance(id: "c", a: "p", b: "l", c: "q", d: "rs")"#,
             vec!["x1", "x2"],
+        ),
+        // Two radii and a length fix the equality of the circles' gap and the length.
+        (
+            r#"Radius(id: "x1", a: "k"), Radius(id: "x2", a: "k2"), Distance(id: "x3", a: "p", b: "q"),
+               EqualDistance(id: "c", a: "k", b: "k2", c: "p", d: "q")"#,
+            vec!["x1", "x2", "x3"],
         ),
         // Equal distances between points are equal lengths.
         (

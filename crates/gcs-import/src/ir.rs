@@ -348,6 +348,10 @@ pub enum Kind {
     /// `[point, line, point, line]`: the distance from the first point to the first line equals
     /// the distance from the second point to the second line.
     EqualPointLineDistances,
+    /// `[a, b, c, d]`: the gap between `a` and `b` equals the gap between `c` and `d`, each
+    /// pair two circles or arcs (the difference of their radii, up to sign: the gap of
+    /// concentric ones), a point and a line, or two points (equal offsets of curves).
+    EqualGaps,
     /// `[segment, point, line]`: the segment's length equals the distance from the point to the
     /// line.
     EqualLengthPointLineDistance,

@@ -952,6 +952,16 @@ impl Lowering {
                 self.push(K::EqualDistance, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
             }
             (Kind::EqualPointLineDistances, _) => unsupported("equal point–line distances"),
+            (Kind::EqualGaps, [a, b, c2, d])
+                if [(a, b), (c2, d)]
+                    .iter()
+                    .all(|pair| matches!(pair, (R, R) | (P, S) | (S, P) | (P, P))) =>
+            {
+                self.push(K::EqualDistance, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
+            }
+            (Kind::EqualGaps, _) => {
+                unsupported("equal gaps other than of circles, points and lines")
+            }
             // (The model's EqualDistance states a length equal to a point–line distance too;
             // lowered, it leaves loops beside other equal lengths that the placement does not
             // close yet — SolveSpace's `mapping2d` test file —, so it stays skipped.)

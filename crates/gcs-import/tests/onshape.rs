@@ -113,17 +113,17 @@ fn every_sample_file_reads_with_the_expected_totals() {
             .count()),
         247 + 15 + 5
     );
-    // 5,531 constraints in the files: 549 skipped (12 of them offsets of circles read in part:
-    // their pairs' relations), 43 mirrors of segments said by the mirrors of their end points
-    // (notes), 9 patterns read as 301 moves of points (`<id>#<element>,<instance>`: 216
-    // `Rotated`, 85 `Translated`, and 9 `#radius` equalities), 31 offsets read whole and 12 in
-    // part as 55 parallelisms or concentricities of their pairs of curves (`#master`, once per
-    // operation, and `#second`) and, for 28 of them, equal gaps (`EqualPointLineDistances`, the
-    // id), 4,899 others read; 15 of these become two (two coincident circles, 14 mirrored
-    // circles: the second is `<id>#equal`); the 5 boxes add 9 constraints each (`<id>#corner1`…):
-    // 4,899 + 15 + 301 + 9 + 55 + 28 + 45 = 5,352.
+    // 5,531 constraints in the files: 540 skipped, 43 mirrors of segments said by the mirrors
+    // of their end points (notes), 9 patterns read as 301 moves of points
+    // (`<id>#<element>,<instance>`: 216 `Rotated`, 85 `Translated`, and 9 `#radius`
+    // equalities), 40 offsets read as 55 parallelisms or concentricities of their pairs of
+    // curves (`#master`, once per operation, and `#second`) and, for 37 of them, equal gaps (the
+    // id: 28 `EqualPointLineDistances` of lines, 9 `EqualGaps` where a pair is of circles),
+    // 4,899 others read; 15 of these become two (two coincident circles, 14 mirrored circles:
+    // the second is `<id>#equal`); the 5 boxes add 9 constraints each (`<id>#corner1`…):
+    // 4,899 + 15 + 301 + 9 + 55 + 37 + 45 = 5,361.
     assert_eq!(source_constraints, 5531);
-    assert_eq!(count(|s| s.constraints.len()), 5352);
+    assert_eq!(count(|s| s.constraints.len()), 5361);
     let relations = count(|s| {
         s.constraints
             .iter()
@@ -137,7 +137,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
         s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
     });
     assert_eq!(moves, 301);
-    assert_eq!(count(|s| s.skipped.len()), 10 + 549);
+    assert_eq!(count(|s| s.skipped.len()), 10 + 540);
     assert_eq!(count(|s| s.notes.len()), 43);
     assert!(
         sketches
@@ -146,7 +146,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
             .all(|n| n.reason.starts_with("MIRROR of two segments"))
     );
     assert_eq!(
-        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 549 + 43 + 9 + 3,
+        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 540 + 43 + 9 + 3,
         5531
     );
     // Sketches with nothing skipped: most others reference the sketch origin or model edges,
@@ -162,7 +162,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
         ("external geometry", 426),
         ("reference to a skipped entity", 42),
         ("zero-length line used as a line", 52),
-        ("offset", 12),
+        ("offset", 3),
         ("circular pattern", 2),
         ("interpolated spline", 10),
         ("combination not expressible", 8),
@@ -670,12 +670,12 @@ fn each_constraint_type() {
             vec![part("s4", Part::Start), s3.clone(), part("s2", Part::Start), s1.clone()]
         )
     );
-    // Circles: concentric, the equal gap (a difference of radii) skipped.
+    // Circles: concentric, and the gap of a circle's pair (a difference of radii) equal to the
+    // gap of a segment's pair (its offset's start to it).
     assert_eq!(c("k50#master"), (Kind::Concentric, vec![c1.clone(), c2.clone()]));
     assert_eq!(
-        skipped(s, "k50"),
-        "OFFSET: the equal gap of the two pairs: equal offsets of circles (differences of radii) \
-         are not in the gcs model yet"
+        c("k50"),
+        (Kind::EqualGaps, vec![c1.clone(), c2.clone(), part("s2", Part::Start), s1.clone()])
     );
     assert!(s.constraints.iter().all(|x| x.id != "k51#master"), "said by k49#master");
     assert_eq!(c("k51#second"), (Kind::Parallel, vec![s2.clone(), s1.clone()]));
@@ -718,10 +718,10 @@ fn each_constraint_type() {
     assert_eq!(c("k45"), (Kind::Symmetric, vec![p1.clone(), p2.clone(), s3.clone()]));
     // s2 runs from x = 30 to x = 0.
     assert_eq!((c("k46"), v("k46")), ((Kind::DistanceX, vec![s2.clone()]), Some(n("-30"))));
-    assert_eq!(s.skipped.len(), 9);
+    assert_eq!(s.skipped.len(), 8);
     // Two `#equal`s, the patterns' second and third constraints, the offsets' second and
     // third (k51's first pair said by k49).
-    assert_eq!(s.constraints.len(), 51 - 9 + 2 + 1 + 2 + 2 + 1 + 2);
+    assert_eq!(s.constraints.len(), 51 - 8 + 2 + 1 + 2 + 2 + 1 + 2);
 }
 
 #[test]

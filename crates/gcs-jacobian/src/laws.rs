@@ -337,6 +337,7 @@ pub(crate) fn law<F: Field>(
             let gap = |g: Gap| -> (Vec<Dual<F>>, Option<Vec<Dual<F>>>) {
                 match g {
                     Gap::PointPoint(x, y) => (v::sub(&l.point(x), &l.point(y)), None),
+                    Gap::CircleCircle(x, y) => (vec![&l.round(x).1 - &l.round(y).1], None),
                     Gap::PointLine { point, line } => {
                         let x = l.point(point);
                         let [a, b, c0] = l.line2(line);

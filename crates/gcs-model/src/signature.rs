@@ -112,13 +112,16 @@ pub enum Gap {
         /// The line.
         line: EntityIdx,
     },
+    /// Between two circles or arcs: the difference of their radii (their gap when they are
+    /// concentric, as an offset's are).
+    CircleCircle(EntityIdx, EntityIdx),
 }
 
 impl Gap {
     /// The entities, in the order the constraint names them.
     pub fn entities(self) -> [EntityIdx; 2] {
         match self {
-            Gap::PointPoint(a, b) => [a, b],
+            Gap::PointPoint(a, b) | Gap::CircleCircle(a, b) => [a, b],
             Gap::PointLine { point, line } => [point, line],
         }
     }
@@ -612,8 +615,8 @@ impl Signature {
                 _ => Err("four lines or segments (fields a, b, c, d), in 2D"),
             },
             K::EqualDistance => {
-                let expected = "two pairs (fields a, b and c, d), each two points or a point and \
-                                a line or segment, in 2D";
+                let expected = "two pairs (fields a, b and c, d), each two points, a point and \
+                                a line or segment, or two circles or arcs, in 2D";
                 if !d2 {
                     return Err(expected);
                 }
@@ -625,6 +628,7 @@ impl Signature {
                     (C::Line, C::Point) => {
                         Some(Gap::PointLine { point: args[x + 1], line: args[x] })
                     }
+                    (C::Circle, C::Circle) => Some(Gap::CircleCircle(args[x], args[x + 1])),
                     _ => None,
                 };
                 match (classes.len() == 4).then(|| (gap(0), gap(2))) {

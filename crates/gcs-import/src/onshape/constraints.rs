@@ -658,9 +658,9 @@ fn pattern(
 /// the first's: for lines, the distance from the offset's start to its curve is the same in
 /// both pairs (`EqualPointLineDistances`, the id). The first pair is shared by every offset of
 /// one operation: its relation is stated once ([`super::fold_repeated_offsets`]). Where a pair
-/// is of circles (a gap that is a difference of radii, not in the gcs model) or the offset is
-/// an infinite line, the equal gap is skipped and the relations kept: the reason comes back
-/// beside them.
+/// is of circles, its gap is the difference of their radii, and the gaps are equal
+/// (`EqualGaps`, the id). Where the offset is an infinite line, the equal gap is skipped and the
+/// relations kept: the reason comes back beside them.
 fn offset(
     params: &Params<'_>,
     id: &str,
@@ -699,21 +699,22 @@ fn offset(
     let mut out = vec![constraint(format!("{id}#master"), relation(&first)?)];
     let Some(second) = second else { return Ok((out, None)) };
     out.push(constraint(format!("{id}#second"), relation(&second)?));
+    // A pair's gap: of concentric circles, the two circles (a difference of radii); of
+    // parallel lines, the offset's start and the curve.
     let gap = |(c, o): &(Arg, Arg)| -> Result<(Ref, Ref), String> {
-        if !(c.is_line() && o.is_line()) {
-            return Err(
-                "equal offsets of circles (differences of radii) are not in the gcs model yet"
-                    .into(),
-            );
+        if c.is_round() {
+            return Ok((c.r.clone(), o.r.clone()));
         }
         if !o.is_segment() {
             return Err("an offset that is an infinite line (no point of its own)".into());
         }
         Ok((Ref::part(o.r.entity.clone(), Part::Start), c.r.clone()))
     };
+    let lines = first.0.is_line() && second.0.is_line();
     match (gap(&first), gap(&second)) {
         (Ok((p, l)), Ok((q, m))) => {
-            out.push(constraint(id.to_owned(), (Kind::EqualPointLineDistances, vec![p, l, q, m])));
+            let kind = if lines { Kind::EqualPointLineDistances } else { Kind::EqualGaps };
+            out.push(constraint(id.to_owned(), (kind, vec![p, l, q, m])));
             Ok((out, None))
         }
         (Err(why), _) | (_, Err(why)) => {

@@ -45,7 +45,7 @@
 //! | CONCENTRIC | circles, arcs / ellipses / a point and a circle | `Concentric` / `Coincident` of the centres / `Coincident` with the centre |
 //! | MIDPOINT | point, line or arc / midpoint, point, point | `Midpoint` / `Symmetric` about the midpoint |
 //! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line / segment, segment, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) / `Symmetric` of the segments (their carriers), or a note when mirrors of both their end points about the same line say it |
-//! | OFFSET | curve, offset (`localMaster`, `localOffset` or `local2`, `local0`) [, second curve, its offset (`localSecond`, `localSecondOffset` or `local3`, `local1`)] | `Parallel` / `Concentric` of each pair (`<id>#master`, once per operation; `<id>#second`), and for lines `EqualPointLineDistances` from the offsets' starts (the id); equal offsets of circles skipped |
+//! | OFFSET | curve, offset (`localMaster`, `localOffset` or `local2`, `local0`) [, second curve, its offset (`localSecond`, `localSecondOffset` or `local3`, `local1`)] | `Parallel` / `Concentric` of each pair (`<id>#master`, once per operation; `<id>#second`), and the equal gaps (the id): `EqualPointLineDistances` from the offsets' starts where both pairs are lines, else `EqualGaps` (a pair of circles by its two circles: a difference of radii) |
 //! | CIRCULAR_PATTERN (closed), LINEAR_PATTERN | pivot or directions, instances `localInstance<k>,<i>[,<j>]` | `Rotated` by i·360°/N (the drawing's sense; N ≤ 36) / `Translated` by one step along a direction segment, per point of each instance (`<id>#<k>,<i>[,<j>]`), `Equal` radii of circles (`…#radius`) |
 //! | DISTANCE (direction MINIMUM) | point–point, point–line, line–line, point–circle, circle–circle | `Distance` |
 //! | DISTANCE (HORIZONTAL, VERTICAL) | point, point | `DistanceX`, `DistanceY`, signed as the drawing shows |
@@ -56,7 +56,7 @@
 //! | CENTERLINE_DIMENSION | centreline, point or line | `Distance` of half the value |
 //! | PROJECTED (USE, USE_END, USE_START) | a sketch entity or point and model geometry | `Fix` of the sketch entity (it is drawn on the projection) |
 //!
-//! Skipped, with the reason: equal offsets of circles, open circular patterns (their angle is
+//! Skipped, with the reason: the equal gap of an offset that is an infinite line, open circular patterns (their angle is
 //! not in the file), circular patterns of other than 2 or 4 instances,
 //! silhouette projections, other types; a line–circle distance;
 //! anything with a reference to external geometry ("reference to external geometry without its
