@@ -37,8 +37,19 @@ pub(crate) fn bigint_mod(x: &BigInt, p: u64) -> u64 {
 }
 
 /// The inverse of `a` (nonzero, reduced) modulo the prime `p`, by the extended Euclidean
-/// algorithm.
+/// algorithm: in 64-bit words for `p < 2^63` (every coefficient is at most `p` in magnitude), in
+/// 128-bit ones otherwise (several times slower: the divisions are library calls).
 pub(crate) fn inv_mod(a: u64, p: u64) -> u64 {
+    if let (Ok(p), Ok(a)) = (i64::try_from(p), i64::try_from(a)) {
+        let (mut t, mut new_t) = (0i64, 1i64);
+        let (mut r, mut new_r) = (p, a);
+        while new_r != 0 {
+            let q = r / new_r;
+            (t, new_t) = (new_t, t - q * new_t);
+            (r, new_r) = (new_r, r - q * new_r);
+        }
+        return if t < 0 { (t + p) as u64 } else { t as u64 };
+    }
     let (mut t, mut new_t) = (0i128, 1i128);
     let (mut r, mut new_r) = (p as i128, a as i128);
     while new_r != 0 {
@@ -76,8 +87,13 @@ fn small_rational_mod(q: &Rat, n: i64, d: i64, p: u64) -> Result<u64, RankError>
     if d == 0 {
         return Err(RankError::DenominatorDivisibleByPrime { prime: p, value: describe(q) });
     }
-    let n = (n as i128).rem_euclid(p as i128) as u128;
-    Ok(((n * inv_mod(d, p) as u128) % p as u128) as u64)
+    // (|n| ≤ 2^63 and p < 2^64: the residue of the magnitude, in 64-bit words.)
+    let m = n.unsigned_abs() % p;
+    let n = if n < 0 && m != 0 { p - m } else { m };
+    if d == 1 {
+        return Ok(n);
+    }
+    Ok(((n as u128 * inv_mod(d, p) as u128) % p as u128) as u64)
 }
 
 fn rational_mod(q: &BigRational, p: u64) -> Result<u64, RankError> {
@@ -408,6 +424,28 @@ mod tests {
     use super::*;
 
     type Big = ModPrime<18_446_744_073_709_551_557>; // 2^64 − 59
+
+    #[test]
+    fn inverses_and_small_fractions_in_either_word_size() {
+        // 2^61 − 1 and the turn prime take the 64-bit path, 2^64 − 59 the 128-bit one.
+        for p in [ModP::PRIME, crate::TURN_PRIME, 18_446_744_073_709_551_557] {
+            for a in [1, 2, 3, 12_345, p / 3, p - 2, p - 1] {
+                let inv = inv_mod(a, p);
+                assert!(inv < p);
+                assert_eq!((a as u128 * inv as u128) % p as u128, 1, "{a} mod {p}");
+            }
+            for (n, d) in
+                [(0, 1), (5, 1), (-5, 1), (i64::MIN, 1), (i64::MAX, 3), (-7, 9), (i64::MIN, 5)]
+            {
+                let q = Rat::new(n, d).unwrap();
+                let (n, d) = q.as_small().unwrap();
+                let r = small_rational_mod(&q, n, d, p).unwrap();
+                // r · d ≡ n (mod p).
+                let n_mod = (n as i128).rem_euclid(p as i128) as u128;
+                assert_eq!((r as u128 * d as u128) % p as u128, n_mod, "{q:?} mod {p}");
+            }
+        }
+    }
 
     #[test]
     fn mersenne_reduction_matches_remainder() {
