@@ -241,25 +241,7 @@ fn an_inscribed_hexagon_reports_the_turns_it_took() {
     let dir = std::env::temp_dir().join(format!("gcs-hexagon-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("hexagon.ron");
-    std::fs::write(
-        &file,
-        r#"System(dim: 2,
-  entities: [Circle(id: "k", center: [0, 0], radius: 82.512197),
-    Point(id: "p1", at: [17.624787723, 80.607874997]), Point(id: "p2", at: [-60.99607363, 55.567451403]),
-    Point(id: "p3", at: [-78.620861354, -25.040423593]), Point(id: "p4", at: [-17.624787723, -80.607874997]),
-    Point(id: "p5", at: [60.99607363, -55.567451403]), Point(id: "p6", at: [78.620861354, 25.040423593]),
-    Segment(id: "s1", from: "p1", to: "p2"), Segment(id: "s2", from: "p2", to: "p3"),
-    Segment(id: "s3", from: "p3", to: "p4"), Segment(id: "s4", from: "p4", to: "p5"),
-    Segment(id: "s5", from: "p5", to: "p6"), Segment(id: "s6", from: "p6", to: "p1")],
-  constraints: [Fix(id: "centre", a: "k.center"), Radius(id: "r", a: "k", value: 82.512197),
-    Incident(id: "i1", a: "p1", b: "k"), Incident(id: "i2", a: "p2", b: "k"),
-    Incident(id: "i3", a: "p3", b: "k"), Incident(id: "i4", a: "p4", b: "k"),
-    Incident(id: "i5", a: "p5", b: "k"), Incident(id: "i6", a: "p6", b: "k"),
-    EqualLength(id: "e2", a: "s1", b: "s2"), EqualLength(id: "e3", a: "s1", b: "s3"),
-    EqualLength(id: "e4", a: "s1", b: "s4"), EqualLength(id: "e5", a: "s1", b: "s5"),
-    EqualLength(id: "e6", a: "s1", b: "s6")])"#,
-    )
-    .unwrap();
+    std::fs::write(&file, gcs_suite::INSCRIBED_HEXAGON).unwrap();
     let path = file.to_str().unwrap();
     let (code, stdout, stderr) = gcs(&["analyze", "--format", "json", path]);
     assert_eq!(code, 0, "{stderr}");
