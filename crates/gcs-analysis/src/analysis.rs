@@ -156,8 +156,9 @@ pub struct AnalysisOptions {
     /// Whether a 2D framework of points and distances between them is decided by the pebble
     /// game ([`RankMethod::PebbleGame`]: the same rank, redundancies and clusters as the
     /// witness, proven by Laman's theorem, without eliminating the Jacobian) with the exact
-    /// and modp backends, when no W-decomposition is asked for. On by default; off, the
-    /// witness decides everything.
+    /// and modp backends; with a W-decomposition, every cluster search of it on a bar
+    /// framework too (its boundaries are still chosen at the witness). On by default; off,
+    /// the witness decides everything.
     pub pebble_game: bool,
 }
 
@@ -315,7 +316,6 @@ struct PebbleFramework {
 
 fn pebble_framework(system: &System, options: &AnalysisOptions) -> Option<PebbleFramework> {
     if !options.pebble_game
-        || options.decompose
         || !matches!(options.backend, Backend::Exact | Backend::ModP)
         || system.dim() != Dim::Two
         || system.entities().iter().any(|e| e.kind() != EntityKind::Point)
@@ -842,6 +842,7 @@ fn analyze_in_field(
         decompose: options.decompose,
         removal_order: options.removal_order,
         decomposition_budget: options.decomposition_budget,
+        pebble_game: options.pebble_game,
     };
     let in_field = |arithmetic: Arithmetic| -> Result<ClusterResult, AnalysisError> {
         let exact = EchelonOptions::default();
@@ -879,7 +880,10 @@ fn analyze_in_field(
         Backend::Exact | Backend::ModP => Arithmetic::ModP,
     };
     let (clusters, decomposition) = match (clusters_arithmetic, pebbles) {
-        (Arithmetic::Combinatorial, Some(p)) => (pebble_clusters(p), None),
+        (Arithmetic::Combinatorial, Some(p)) if !options.decompose => (pebble_clusters(p), None),
+        // The W-decomposition's cluster searches play the pebble game themselves (bar
+        // frameworks all the way down); its boundaries are chosen at the witness.
+        (Arithmetic::Combinatorial, Some(_)) => in_field(Arithmetic::ModP)?,
         _ => in_field(clusters_arithmetic)?,
     };
     let (decomposition, decomposition_statistics) = match decomposition {

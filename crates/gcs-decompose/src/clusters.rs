@@ -37,6 +37,10 @@ pub struct ClusterOptions {
     /// elimination); past it, the subsystems not yet examined are reported as leaves and the
     /// statistics say the decomposition is incomplete.
     pub decomposition_budget: usize,
+    /// Whether subsystems that are 2D bar frameworks (points and distances between them) are
+    /// decided by the pebble game instead of at the witness, in exact fields (the generic
+    /// clusters, by Laman's theorem): what makes W-decompositions of large frameworks fast.
+    pub pebble_game: bool,
 }
 
 impl Default for ClusterOptions {
@@ -46,6 +50,7 @@ impl Default for ClusterOptions {
             decompose: false,
             removal_order: RemovalOrder::default(),
             decomposition_budget: 20_000,
+            pebble_game: true,
         }
     }
 }
@@ -69,6 +74,7 @@ pub fn clusters<F: Field>(
     let generators = motions::generators::<F>(system, layout, &coords)?;
     let mut ctx = crate::rigid::Context::new(system, layout, jacobian, generators, echelon);
     ctx.method = options.method;
+    ctx.pebble = options.pebble_game && F::EXACT;
     let groups = ctx.constraint_groups(jacobian);
     let entities: Vec<EntityIdx> =
         system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
@@ -209,8 +215,12 @@ mod tests {
     }
 
     /// The clusters at the default witness (modulo the prime), as lists of entity ids, and
-    /// where the witness came from.
+    /// where the witness came from (the witness search decides, not the pebble game).
     fn clusters_by_id(system: &System) -> (WitnessSource, Vec<Vec<String>>) {
+        clusters_by_id_with(system, false)
+    }
+
+    fn clusters_by_id_with(system: &System, pebble_game: bool) -> (WitnessSource, Vec<Vec<String>>) {
         let layout = Layout::new(system);
         let witness = find_witness(system, &layout, &WitnessOptions::default()).unwrap();
         let jacobian: Jacobian<ModP> = witness.jacobian(system, &layout).unwrap();
@@ -221,13 +231,102 @@ mod tests {
             &jacobian,
             coords,
             EchelonOptions::default(),
-            &ClusterOptions::default(),
+            &ClusterOptions { pebble_game, ..ClusterOptions::default() },
         )
         .unwrap();
         let ids = |c: &Cluster| -> Vec<String> {
             c.entities.iter().map(|e| system.entity(*e).id.clone()).collect()
         };
         (witness.source, found.iter().map(ids).collect())
+    }
+
+    /// A random 2D bar framework: a Laman graph on `n` points with some bars removed and some
+    /// added (so flexible parts, redundant ones and several clusters), at random integer
+    /// coordinates (the sketch: a generic witness with overwhelming probability).
+    fn random_framework(n: usize, seed: u64) -> System {
+        let mut rng = gcs_model::rng::SplitMix64::new(seed);
+        let mut edges = gcs_model::generate::laman_edges(n, 0.5, &mut rng);
+        for _ in 0..rng.below(3) {
+            let k = rng.below(edges.len() as u64) as usize;
+            edges.swap_remove(k);
+        }
+        for _ in 0..rng.below(4) {
+            let (a, b) = (rng.below(n as u64) as usize, rng.below(n as u64) as usize);
+            if a != b {
+                edges.push((a, b));
+            }
+        }
+        let coords = gcs_model::generate::random_coords(n, gcs_model::Dim::Two, 1000, &mut rng);
+        gcs_model::generate::framework("random", gcs_model::Dim::Two, &coords, &edges)
+    }
+
+    /// The pebble game's clusters of a bar framework are the witness search's, for the whole
+    /// framework and for it without each of its bars in turn (the W-decomposition's question).
+    #[test]
+    fn the_pebble_game_finds_the_witness_clusters_of_bar_frameworks() {
+        let mut compared = 0;
+        for seed in 1..=40 {
+            let system = random_framework(5 + (seed as usize % 9), seed);
+            let layout = Layout::new(&system);
+            let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+            let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
+            let coords: Vec<ModP> = witness.coords_in().unwrap();
+            let generators = motions::generators::<ModP>(&system, &layout, &coords).unwrap();
+            let mut ctx = crate::rigid::Context::new(
+                &system,
+                &layout,
+                &jacobian,
+                generators,
+                EchelonOptions::default(),
+            );
+            ctx.method = ClusterMethod::Kernel;
+            let groups = ctx.constraint_groups(&jacobian);
+            let entities: Vec<EntityIdx> = system.entity_indices().collect();
+            let whole = crate::rigid::Subsystem { entities, groups };
+            let mut subs = vec![whole.clone()];
+            for g in 0..whole.groups.len() {
+                let mut without = whole.clone();
+                without.groups.remove(g);
+                subs.push(without);
+            }
+            for sub in &subs {
+                ctx.pebble = false;
+                let searched = crate::rigid::clusters(&ctx, sub);
+                ctx.pebble = true;
+                assert_eq!(crate::rigid::clusters(&ctx, sub), searched, "seed {seed}");
+                compared += 1;
+            }
+        }
+        assert!(compared > 400, "{compared}");
+    }
+
+    /// W-decompositions of random Laman frameworks with and without the pebble game agree.
+    #[test]
+    fn w_decompositions_with_the_pebble_game_are_the_witness_ones() {
+        for seed in 1..=12 {
+            let system = gcs_model::generate::laman(8 + seed as usize, seed);
+            let layout = Layout::new(&system);
+            let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+            let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
+            let coords: Vec<ModP> = witness.coords_in().unwrap();
+            let run = |pebble_game: bool| {
+                let options =
+                    ClusterOptions { decompose: true, pebble_game, ..ClusterOptions::default() };
+                let (clusters, decomposition) = super::clusters(
+                    &system,
+                    &layout,
+                    &jacobian,
+                    coords.clone(),
+                    EchelonOptions::default(),
+                    &options,
+                )
+                .unwrap();
+                (clusters, decomposition.map(|d| d.0))
+            };
+            let (with, without) = (run(true), run(false));
+            assert!(with.1.as_ref().is_some_and(|t| !t.is_empty()), "seed {seed}");
+            assert_eq!(with, without, "seed {seed}");
+        }
     }
 
     #[test]
@@ -303,5 +402,8 @@ mod tests {
         let (source, clusters) = clusters_by_id(&system);
         assert_eq!(source, WitnessSource::Sketch);
         assert_eq!(clusters, [["h", "a", "b", "y"], ["h", "c", "d", "y"]], "{clusters:?}");
+        // The pebble game gives the generic clusters: `y` is not on the hinge generically.
+        let (_, generic) = clusters_by_id_with(&system, true);
+        assert_eq!(generic, [vec!["h", "a", "b"], vec!["h", "c", "d", "y"]], "{generic:?}");
     }
 }

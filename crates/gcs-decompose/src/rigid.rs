@@ -97,6 +97,9 @@ pub(crate) struct Context<'a, F> {
     pub(crate) options: EchelonOptions,
     /// How clusters are found.
     pub(crate) method: ClusterMethod,
+    /// Whether a subsystem that is a 2D bar framework is decided by the pebble game
+    /// ([`pebble_clusters`]) instead of at the witness.
+    pub(crate) pebble: bool,
 }
 
 impl<'a, F: Field> Context<'a, F> {
@@ -113,7 +116,15 @@ impl<'a, F: Field> Context<'a, F> {
                 internal.entry(*e).or_default().push(row.clone());
             }
         }
-        Context { system, layout, generators, internal, options, method: ClusterMethod::default() }
+        Context {
+            system,
+            layout,
+            generators,
+            internal,
+            options,
+            method: ClusterMethod::default(),
+            pebble: false,
+        }
     }
 
     /// The groups of every constraint of the system, from the Jacobian.
@@ -606,6 +617,11 @@ impl<'c, 'a, F: Field> Search<'c, 'a, F> {
 
 /// The maximal rigid subsystems of a subsystem, sorted by first entity (file order).
 pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Vec<RawCluster> {
+    if ctx.pebble
+        && let Some(out) = pebble_clusters(ctx, sub)
+    {
+        return out;
+    }
     if ctx.method == ClusterMethod::OpenChain
         && let Some(mut out) = open_chain(ctx, sub)
     {
@@ -615,6 +631,71 @@ pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Ve
     let mut out = Search::new(ctx, sub).run();
     out.sort_by(|a, b| a.entities.cmp(&b.entities));
     out
+}
+
+/// The maximal rigid subsystems of a 2D bar framework — points, and groups that are each one
+/// distance between two of them (a constraint's, or a boundary's virtual one) — by the (2,3)
+/// pebble game ([`crate::pebble_game`]), sorted as [`clusters`] sorts them; `None` when `sub`
+/// is not such a framework.
+///
+/// By Laman's theorem the game's components are the generic clusters, which the witness's are
+/// (the witness analysis's own premise); at a special witness they can differ, and the game's
+/// are then the right ones (a point sketched on a hinge is not in both bodies' clusters
+/// generically). Cross-checked against [`Search`] on random frameworks in the tests.
+fn pebble_clusters<F>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Option<Vec<RawCluster>> {
+    use gcs_model::{Dim, EntityKind, Metric, Signature};
+    let system = ctx.system;
+    if system.dim() != Dim::Two
+        || sub.entities.iter().any(|e| system.entity(*e).kind() != EntityKind::Point)
+    {
+        return None;
+    }
+    let vertex: HashMap<EntityIdx, usize> =
+        sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
+    let mut bars = Vec::with_capacity(sub.groups.len());
+    for g in &sub.groups {
+        let distance = match g.label {
+            Label::Constraint(c) => matches!(
+                system.constraint(c).signature,
+                Signature::Metric(Metric::DistancePointPoint(..))
+            ),
+            // Between two points, a boundary relation is a distance (see `wdec::relations`).
+            Label::Virtual(_) => true,
+        };
+        let [a, b] = g.entities[..] else { return None };
+        if !distance || g.absolute || g.rows.len() != 1 || a == b {
+            return None;
+        }
+        bars.push((*vertex.get(&a)?, *vertex.get(&b)?));
+    }
+    let game = crate::pebble_game(sub.entities.len(), &bars);
+    // Each bar lies in exactly one component: the one of its first end that holds the other.
+    let mut of_vertex: Vec<Vec<usize>> = vec![Vec::new(); sub.entities.len()];
+    for (k, c) in game.components.iter().enumerate() {
+        for &v in c {
+            of_vertex[v].push(k);
+        }
+    }
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); game.components.len()];
+    for (g, &(u, v)) in bars.iter().enumerate() {
+        if let Some(&k) =
+            of_vertex[u].iter().find(|k| game.components[**k].binary_search(&v).is_ok())
+        {
+            groups[k].push(g);
+        }
+    }
+    let mut out: Vec<RawCluster> = game
+        .components
+        .iter()
+        .zip(groups)
+        .map(|(c, groups)| {
+            let mut entities: Vec<EntityIdx> = c.iter().map(|&v| sub.entities[v]).collect();
+            entities.sort_unstable();
+            RawCluster { entities, groups, grounded: false }
+        })
+        .collect();
+    out.sort_by(|a, b| a.entities.cmp(&b.entities));
+    Some(out)
 }
 
 /// The open-chain shortcut (witness paper §4, after Algorithm 2), or `None` where it does not

@@ -275,12 +275,13 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             self.stats.mrs_computations += 1;
             self.stats.searched_entities += without.entities.len();
             let found = clusters(self.ctx, &without);
+            let degrees = Degrees::new(&without);
             let nontrivial: Vec<RawCluster> = found
                 .into_iter()
                 .filter(|m| {
                     m.entities.len() < sub.entities.len()
                         && m.entities.len() > 1
-                        && m.entities.iter().any(|e| !on_boundary(&without, &removed, m, *e))
+                        && degrees.boundary(&without, &removed, m).iter().any(|b| !b)
                 })
                 .collect();
             if nontrivial.is_empty() {
@@ -309,15 +310,13 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let mut replacements: Vec<Replacement> = Vec::new();
         let mut subtrees: Vec<Node> = Vec::new();
         let mut boundary_groups: Vec<Group<F>> = Vec::new();
+        let degrees = Degrees::new(without);
         for m in nontrivial {
             let groups: Vec<usize> =
                 m.groups.iter().copied().filter(|g| !used_groups[*g]).collect();
-            let boundary: Vec<EntityIdx> = m
-                .entities
-                .iter()
-                .copied()
-                .filter(|e| on_boundary(without, removed, &m, *e))
-                .collect();
+            let on_boundary = degrees.boundary(without, removed, &m);
+            let boundary: Vec<EntityIdx> =
+                m.entities.iter().zip(on_boundary).filter(|(_, b)| *b).map(|(e, _)| *e).collect();
             let Some(relations) = self.boundary(&boundary) else { continue };
             for g in &groups {
                 used_groups[*g] = true;
@@ -470,16 +469,39 @@ fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<Signature> {
         .collect()
 }
 
-/// Whether `e` of the subsystem `m` is on its boundary: bound by a group outside `m` (the
-/// removed constraint counts).
-fn on_boundary<F>(sub: &Subsystem<F>, removed: &Group<F>, m: &RawCluster, e: EntityIdx) -> bool {
-    if removed.entities.contains(&e) {
-        return true;
+/// How many groups of a subsystem bind each entity: what tells the boundary of a cluster of
+/// it in time linear in the cluster's groups.
+struct Degrees(HashMap<EntityIdx, usize>);
+
+impl Degrees {
+    fn new<F>(sub: &Subsystem<F>) -> Degrees {
+        let mut degree: HashMap<EntityIdx, usize> = HashMap::new();
+        for group in &sub.groups {
+            for e in &group.entities {
+                *degree.entry(*e).or_default() += 1;
+            }
+        }
+        Degrees(degree)
     }
-    sub.groups
-        .iter()
-        .enumerate()
-        .any(|(g, group)| !m.groups.contains(&g) && group.entities.contains(&e))
+
+    /// For each entity of `m` (a cluster of `sub`, whose degrees these are), whether it is on
+    /// `m`'s boundary: bound by a group outside `m` (the removed constraint counts) — that is,
+    /// by more groups of `sub` than of `m`.
+    fn boundary<F>(&self, sub: &Subsystem<F>, removed: &Group<F>, m: &RawCluster) -> Vec<bool> {
+        let mut inside: HashMap<EntityIdx, usize> = HashMap::new();
+        for &g in &m.groups {
+            for e in &sub.groups[g].entities {
+                *inside.entry(*e).or_default() += 1;
+            }
+        }
+        m.entities
+            .iter()
+            .map(|e| {
+                removed.entities.contains(e)
+                    || self.0.get(e).copied().unwrap_or(0) > inside.get(e).copied().unwrap_or(0)
+            })
+            .collect()
+    }
 }
 
 /// Arranges nodes into a forest by containment of their entity sets; nodes with the same
@@ -499,14 +521,17 @@ fn nest(nodes: Vec<Node>) -> Vec<Node> {
         flatten(n, &mut all);
     }
     let mut merged: Vec<Node> = Vec::new();
+    let mut by_entities: HashMap<Vec<EntityIdx>, usize> = HashMap::new();
     for n in all {
-        if let Some(m) = merged.iter_mut().find(|m| m.entities == n.entities) {
+        if let Some(&k) = by_entities.get(&n.entities) {
+            let m = &mut merged[k];
             for l in n.labels {
                 if !m.labels.contains(&l) {
                     m.labels.push(l);
                 }
             }
         } else {
+            by_entities.insert(n.entities.clone(), merged.len());
             merged.push(n);
         }
     }
@@ -520,12 +545,18 @@ fn nest(nodes: Vec<Node>) -> Vec<Node> {
 
 fn insert(forest: &mut Vec<Node>, n: Node) {
     for parent in forest.iter_mut() {
-        if parent.entities.len() > n.entities.len()
-            && n.entities.iter().all(|e| parent.entities.contains(e))
-        {
+        if parent.entities.len() > n.entities.len() && is_subset(&n.entities, &parent.entities) {
             insert(&mut parent.children, n);
             return;
         }
     }
     forest.push(n);
+}
+
+/// Whether the ascending `small` is a subset of the ascending `big` (node entities are kept
+/// in file order).
+fn is_subset(small: &[EntityIdx], big: &[EntityIdx]) -> bool {
+    debug_assert!(small.is_sorted() && big.is_sorted());
+    let mut rest = big.iter();
+    small.iter().all(|e| rest.any(|b| b == e))
 }
