@@ -4,6 +4,8 @@
 //! side:
 //!
 //! - `rectangles`: grids of fixed CAD rectangles (`generate::rectangles`), 100, 1000, 10000;
+//! - `grid`: connected CAD plates (`generate::grid`: n × n cells sharing sides, a hole in each),
+//!   n = 16, 50, 158: about 1,000, 10,000 and 100,000 entities (issue 15's connected sketches);
 //! - `laman`: random 2D Laman frameworks (`generate::laman`), 50, 200, 800 points;
 //! - `laman_sketch`: the same as a CAD program writes them (`generate::laman_sketch`): 10-digit
 //!   decimal coordinates and one redundant distance whose circuit spans most of the framework,
@@ -24,13 +26,14 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion, SamplingMode};
 use gcs_analysis::{AnalysisOptions, Backend, analyze};
 use gcs_model::System;
-use gcs_model::generate::{laman, laman_sketch, rectangles, triangulated_sphere};
+use gcs_model::generate::{grid, laman, laman_sketch, rectangles, triangulated_sphere};
 
 const SEED: u64 = 2024;
 
 /// The families and their sizes.
-const FAMILIES: [(&str, &[usize]); 4] = [
+const FAMILIES: [(&str, &[usize]); 5] = [
     ("rectangles", &[100, 1000, 10_000]),
+    ("grid", &[16, 50, 158]),
     ("laman", &[50, 200, 800]),
     ("laman_sketch", &[100, 300, 1000]),
     ("sphere", &[50, 200]),
@@ -46,6 +49,8 @@ fn measured(family: &str, backend: Backend, n: usize) -> bool {
         // Rational elimination at 10-digit coordinates: minutes from 50 points on.
         ("laman_sketch", "rational" | "rug") => false,
         ("sphere", "rational") => false,
+        // The largest plate: the two backends of the target, modp and exact.
+        ("grid", "rational" | "rug" | "float") => n <= 50,
         ("sphere", "rug") => n <= 50,
         _ => true,
     }
@@ -63,6 +68,7 @@ fn backends() -> Vec<Backend> {
 fn system(family: &str, n: usize) -> System {
     match family {
         "rectangles" => rectangles(n),
+        "grid" => grid(n),
         "laman" => laman(n, SEED),
         "laman_sketch" => laman_sketch(n, SEED),
         "sphere" => triangulated_sphere(n, SEED),

@@ -236,7 +236,8 @@ enum Command {
     },
     /// Print a generated model of a family of growing size (the benchmark families) as RON.
     Generate {
-        /// The family: `rectangles` (N fixed CAD rectangles), `laman` (a random rigid 2D bar
+        /// The family: `rectangles` (N fixed CAD rectangles), `grid` (a connected CAD plate:
+        /// N × N rectangular cells sharing sides, a hole in each), `laman` (a random rigid 2D bar
         /// framework on N points), `laman-sketch` (the same as a CAD program writes it:
         /// 10-digit decimal coordinates, one redundant distance), `laman-drawn` (a random
         /// Laman realization drawn with 20% jitter, for the solver), `sphere` (a random
@@ -256,6 +257,9 @@ enum Command {
 enum Family {
     /// Fully constrained CAD rectangles with Fix, Horizontal, Vertical and two dimensions.
     Rectangles,
+    /// A connected CAD plate: an N × N grid of cells sharing their sides, a dimensioned hole
+    /// in each (about 4N² entities).
+    Grid,
     /// A random 2D Laman graph (Henneberg moves) as a bar framework.
     Laman,
     /// A random Laman framework with 10-digit decimal coordinates and one redundant distance.
@@ -400,6 +404,7 @@ fn main() -> ExitCode {
         Command::Generate { family, size, seed } => {
             let system = match family {
                 Family::Rectangles => gcs_model::generate::rectangles(size),
+                Family::Grid => gcs_model::generate::grid(size),
                 Family::Laman => gcs_model::generate::laman(size, seed),
                 Family::LamanSketch => gcs_model::generate::laman_sketch(size, seed),
                 Family::LamanDrawn => gcs_model::generate::laman_drawn(size, seed, 0.2).0,

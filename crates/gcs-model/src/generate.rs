@@ -81,6 +81,91 @@ pub fn rectangles_drawn(n: usize, jitter: f64, seed: u64) -> System {
     b.build()
 }
 
+/// A connected CAD plate: an `n × n` grid of rectangular cells sharing their sides, with a
+/// hole in every cell, written as a CAD user writes it — `(n + 1)²` lattice points, the
+/// horizontal and vertical segments between neighbours (`Horizontal`, `Vertical`), a `Fix` on
+/// the corner, the widths of the bottom row's cells and the heights of the left column's
+/// (`Distance`), and in each cell a circle placed from the cell's lower left corner
+/// (`DistanceX`, `DistanceY` to its centre `h….center`) with a `Radius`. Well-constrained as a
+/// whole (every point is bound to its row and column, so nothing decouples), no redundancy:
+/// about `4n²` entities, `(n + 1)² + 2n(n + 1) + n²`.
+///
+/// # Example
+/// ```
+/// let s = gcs_model::generate::grid(3);
+/// assert_eq!(s.entities().len(), 16 + 24 + 9);
+/// assert_eq!(s.dof_sum(), s.doc_sum());
+/// ```
+pub fn grid(n: usize) -> System {
+    let mut b = SystemBuilder::new(format!("grid-{n}"), Dim::Two);
+    // Cell sizes 3–9 by 3–7, varied so no two rows or columns line up by accident.
+    let width = |j: usize| 3 + (j * 5 % 7) as i64;
+    let height = |i: usize| 3 + (i * 3 % 5) as i64;
+    let xs: Vec<i64> = (0..=n).scan(0, |x, j| Some(std::mem::replace(x, *x + width(j)))).collect();
+    let ys: Vec<i64> = (0..=n).scan(0, |y, i| Some(std::mem::replace(y, *y + height(i)))).collect();
+    let p = |i: usize, j: usize| format!("p{i}_{j}");
+    for (i, y) in ys.iter().enumerate() {
+        for (j, x) in xs.iter().enumerate() {
+            ok(b.point(&p(i, j), Some(vec![int(*x), int(*y)])));
+        }
+    }
+    ok(b.constraint(ConstraintKind::Fix, "fix", &[&p(0, 0)], None));
+    for i in 0..=n {
+        for j in 0..=n {
+            if j < n {
+                let s = format!("h{i}_{j}");
+                ok(b.segment(&s, &p(i, j), &p(i, j + 1)));
+                ok(b.constraint(ConstraintKind::Horizontal, &format!("{s}.h"), &[&s], None));
+                if i == 0 {
+                    let w = Some(int(width(j)));
+                    let ends = [p(i, j), p(i, j + 1)];
+                    ok(b.constraint(
+                        ConstraintKind::Distance,
+                        &format!("w{j}"),
+                        &[&ends[0], &ends[1]],
+                        w,
+                    ));
+                }
+            }
+            if i < n {
+                let s = format!("v{i}_{j}");
+                ok(b.segment(&s, &p(i, j), &p(i + 1, j)));
+                ok(b.constraint(ConstraintKind::Vertical, &format!("{s}.v"), &[&s], None));
+                if j == 0 {
+                    let h = Some(int(height(i)));
+                    let ends = [p(i, j), p(i + 1, j)];
+                    ok(b.constraint(
+                        ConstraintKind::Distance,
+                        &format!("t{i}"),
+                        &[&ends[0], &ends[1]],
+                        h,
+                    ));
+                }
+            }
+        }
+    }
+    let half = |v: i64| BigRational::new(v.into(), 2.into());
+    for i in 0..n {
+        for j in 0..n {
+            let (w, h) = (width(j), height(i));
+            let c = format!("c{i}_{j}");
+            let centre = vec![int(2 * xs[j] + w) / int(2), int(2 * ys[i] + h) / int(2)];
+            ok(b.circle(&c, Some(centre), Some(int(1))));
+            let centre = format!("{c}.center");
+            let corner = p(i, j);
+            for (kind, axis, v) in [
+                (ConstraintKind::DistanceX, "x", half(w)),
+                (ConstraintKind::DistanceY, "y", half(h)),
+            ] {
+                let id = format!("{c}.{axis}");
+                ok(b.constraint(kind, &id, &[corner.as_str(), centre.as_str()], Some(v)));
+            }
+            ok(b.constraint(ConstraintKind::Radius, &format!("{c}.r"), &[&c], Some(int(1))));
+        }
+    }
+    b.build()
+}
+
 /// The edges of a random 2D Laman graph on `n ≥ 2` vertices built by Henneberg moves from one
 /// edge: a type I move adds a vertex joined to two existing vertices; a type II move (chosen
 /// with probability `type2` when an edge exists) removes an edge `uv` and adds a vertex joined
