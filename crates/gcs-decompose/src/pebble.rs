@@ -170,6 +170,44 @@ impl Game {
         }
     }
 
+    /// Whether the accepted bars leave exactly three free pebbles (the framework, on at least
+    /// two vertices, is rigid and independent so far), every other vertex's two covering bars.
+    fn tight(&self) -> bool {
+        self.pebbles.iter().map(|p| usize::from(*p)).sum::<usize>() == 3
+    }
+
+    /// In a tight framework ([`Game::tight`]): the vertices of the smallest tight set holding
+    /// `a` and `b` (the two first, then the others as found). With the three free pebbles gathered on `a` and `b`, no other
+    /// vertex holds one, so what is reachable from them along the directed bars is closed and
+    /// spans `2|X| − 3` bars; and every tight set holding both contains it, since its vertices
+    /// cover its own bars and nothing else (Lee–Streinu). `None` when the framework is not
+    /// tight or a vertex is out of range.
+    pub fn span(&mut self, a: usize, b: usize) -> Option<Vec<usize>> {
+        let n = self.pebbles.len();
+        if a >= n || b >= n || a == b || !self.tight() {
+            return None;
+        }
+        self.fence_id = u32::MAX;
+        if !self.gather(a, b, 3) {
+            return None;
+        }
+        let g = self.next_generation();
+        self.seen[a] = g;
+        self.seen[b] = g;
+        let mut found = vec![a, b];
+        let mut next = 0;
+        while let Some(&x) = found.get(next) {
+            next += 1;
+            for &(y, _) in &self.out[x] {
+                if self.seen[y as usize] != g {
+                    self.seen[y as usize] = g;
+                    found.push(y as usize);
+                }
+            }
+        }
+        Some(found)
+    }
+
     /// A fresh search mark.
     fn next_generation(&mut self) -> u32 {
         self.generation = self.generation.wrapping_add(1);
@@ -385,4 +423,33 @@ fn components(game: &mut Game, n: usize, bars: &[(usize, usize)]) -> Vec<Vec<usi
     }
     out.sort();
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The smallest tight set holding two points: a triangle 0 1 2, point 3 on 0 and 1,
+    /// point 4 on 2 and 3.
+    #[test]
+    fn span_is_the_smallest_tight_set_holding_both() {
+        let bars = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 4), (3, 4)];
+        let mut game = Game::new(5);
+        for (i, &(u, v)) in bars.iter().enumerate() {
+            assert!(game.add(u, v, i));
+        }
+        let mut span = |a, b| {
+            let mut s: Vec<usize> = game.span(a, b).unwrap();
+            s.sort_unstable();
+            s
+        };
+        assert_eq!(span(0, 1), [0, 1]);
+        assert_eq!(span(2, 3), [0, 1, 2, 3]);
+        assert_eq!(span(1, 2), [1, 2]);
+        assert_eq!(span(0, 4), [0, 1, 2, 3, 4]);
+        // Not tight: a bar too few.
+        let mut loose = Game::new(3);
+        assert!(loose.add(0, 1, 0) && loose.add(1, 2, 1));
+        assert_eq!(loose.span(0, 2), None);
+    }
 }

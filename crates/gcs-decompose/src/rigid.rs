@@ -643,31 +643,7 @@ pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Ve
 /// are then the right ones (a point sketched on a hinge is not in both bodies' clusters
 /// generically). Cross-checked against [`Search`] on random frameworks in the tests.
 fn pebble_clusters<F>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Option<Vec<RawCluster>> {
-    use gcs_model::{Dim, EntityKind, Metric, Signature};
-    let system = ctx.system;
-    if system.dim() != Dim::Two
-        || sub.entities.iter().any(|e| system.entity(*e).kind() != EntityKind::Point)
-    {
-        return None;
-    }
-    let vertex: HashMap<EntityIdx, usize> =
-        sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
-    let mut bars = Vec::with_capacity(sub.groups.len());
-    for g in &sub.groups {
-        let distance = match g.label {
-            Label::Constraint(c) => matches!(
-                system.constraint(c).signature,
-                Signature::Metric(Metric::DistancePointPoint(..))
-            ),
-            // Between two points, a boundary relation is a distance (see `wdec::relations`).
-            Label::Virtual(_) => true,
-        };
-        let [a, b] = g.entities[..] else { return None };
-        if !distance || g.absolute || g.rows.len() != 1 || a == b {
-            return None;
-        }
-        bars.push((*vertex.get(&a)?, *vertex.get(&b)?));
-    }
+    let bars = bar_framework(ctx, sub)?;
     let game = crate::pebble_game(sub.entities.len(), &bars);
     // Each bar lies in exactly one component: the one of its first end that holds the other.
     let mut of_vertex: Vec<Vec<usize>> = vec![Vec::new(); sub.entities.len()];
@@ -696,6 +672,40 @@ fn pebble_clusters<F>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Option<Vec<Ra
         .collect();
     out.sort_by(|a, b| a.entities.cmp(&b.entities));
     Some(out)
+}
+
+/// The bars of a subsystem that is a 2D bar framework (see [`pebble_clusters`]), group by
+/// group, as pairs of positions in `sub.entities`; `None` when it is not one.
+pub(crate) fn bar_framework<F>(
+    ctx: &Context<'_, F>,
+    sub: &Subsystem<F>,
+) -> Option<Vec<(usize, usize)>> {
+    use gcs_model::{Dim, EntityKind, Metric, Signature};
+    let system = ctx.system;
+    if system.dim() != Dim::Two
+        || sub.entities.iter().any(|e| system.entity(*e).kind() != EntityKind::Point)
+    {
+        return None;
+    }
+    let vertex: HashMap<EntityIdx, usize> =
+        sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
+    let mut bars = Vec::with_capacity(sub.groups.len());
+    for g in &sub.groups {
+        let distance = match g.label {
+            Label::Constraint(c) => matches!(
+                system.constraint(c).signature,
+                Signature::Metric(Metric::DistancePointPoint(..))
+            ),
+            // Between two points, a boundary relation is a distance (see `wdec::relations`).
+            Label::Virtual(_) => true,
+        };
+        let [a, b] = g.entities[..] else { return None };
+        if !distance || g.absolute || g.rows.len() != 1 || a == b {
+            return None;
+        }
+        bars.push((*vertex.get(&a)?, *vertex.get(&b)?));
+    }
+    Some(bars)
 }
 
 /// The open-chain shortcut (witness paper §4, after Algorithm 2), or `None` where it does not

@@ -261,13 +261,29 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     }
 
     fn wdec(&mut self, sub: &Subsystem<F>) -> Node {
-        if sub.groups.len() <= 1 || sub.entities.len() <= 1 {
+        let mut parts = self.pebble_parts(sub);
+        if sub.groups.len() <= 1
+            || sub.entities.len() <= 1
+            || parts.as_ref().is_some_and(|p| p.is_empty())
+        {
             return Self::leaf(sub);
         }
         for gi in self.removal_order(sub) {
             if self.budget == 0 {
                 self.stats.complete = false;
                 return Self::leaf(sub);
+            }
+            if let Some(parts) = &parts
+                && let [a, b] = sub.groups[gi].entities[..]
+                && let (Some(a), Some(b)) = (
+                    sub.entities.iter().position(|e| *e == a),
+                    sub.entities.iter().position(|e| *e == b),
+                )
+                && parts.iter().all(|p| p[a] && p[b])
+            {
+                // Fruitless, by the certificate: no search.
+                self.stats.fruitless_removals += 1;
+                continue;
             }
             self.budget -= 1;
             let mut without = sub.clone();
@@ -288,12 +304,74 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 self.stats.fruitless_removals += 1;
                 continue;
             }
+            // (The certificate's masks are not kept through the recursion.)
+            parts = None;
             if let Some(node) = self.split(sub, &without, &removed, nontrivial) {
                 return node;
             }
             self.stats.fruitless_removals += 1;
         }
         Self::leaf(sub)
+    }
+
+    /// The pebble game's certificate of which removals are fruitful, with none tried, for a
+    /// minimally rigid 2D bar framework on four or more points: the smallest rigid parts
+    /// holding a point and all its neighbours that are not the whole (as point masks over
+    /// `sub.entities`); `None` where it does not apply. A removal is fruitful exactly when
+    /// one of those parts does not hold both ends of the removed bar (so with none, `sub` is
+    /// a leaf).
+    ///
+    /// Why that is exact: a removal is fruitful when it leaves a cluster `M`, not the whole,
+    /// with a point `x` all of whose bars lie in `M`. Such an `M` is tight in `sub` too (its
+    /// `2|M| − 3` bars; the removed one cannot join two of its points, sparsity forbids it),
+    /// and holds `x` with its neighbours, so the smallest such part `U_x` lies in `M` and does
+    /// not hold both ends of the removed bar. Conversely, a tight `U_x` without both ends of
+    /// the removed bar stays rigid, inside a cluster that is not the whole (the rest is not
+    /// rigid) with `x` inside it. The smallest tight part holding `x` and its neighbours
+    /// `y₁ … y_d` is `x` with the union of the smallest tight sets holding `y₁` and each `y_j`
+    /// ([`crate::pebble::Game::span`]): each of those with `x` is tight (`x` brings its two
+    /// bars to them), they share `x` and `y₁`, and the union of tight sets sharing two points
+    /// is tight.
+    fn pebble_parts(&self, sub: &Subsystem<F>) -> Option<Vec<Vec<bool>>> {
+        if !self.ctx.pebble {
+            return None;
+        }
+        let bars = crate::rigid::bar_framework(self.ctx, sub)?;
+        let n = sub.entities.len();
+        if n < 4 || bars.len() != 2 * n - 3 {
+            return None;
+        }
+        let mut game = crate::pebble::Game::new(n);
+        let mut neighbours = vec![Vec::new(); n];
+        for (i, &(u, v)) in bars.iter().enumerate() {
+            if !game.add(u, v, i) {
+                return None;
+            }
+            neighbours[u].push(v);
+            neighbours[v].push(u);
+        }
+        let mut parts = Vec::new();
+        for (x, around) in neighbours.iter().enumerate() {
+            let (&first, rest) = around.split_first()?;
+            let mut part = vec![false; n];
+            part[x] = true;
+            part[first] = true;
+            let mut size = 2 - usize::from(x == first);
+            for &y in rest {
+                if size == n {
+                    // (The whole already: the usual case, after one span.)
+                    break;
+                }
+                for v in game.span(first, y)? {
+                    size += usize::from(!part[v]);
+                    part[v] = true;
+                }
+            }
+            if size < n {
+                parts.push(part);
+            }
+        }
+        Some(parts)
     }
 
     /// Replaces the non-trivial subsystems by their boundaries, decomposes the reduced system
