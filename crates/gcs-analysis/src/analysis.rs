@@ -154,11 +154,11 @@ pub struct AnalysisOptions {
     /// cluster that is a distance framework: [`Analysis::global_rigidity`]. On by default.
     pub global_rigidity: bool,
     /// Whether a 2D framework of points and distances between them is decided by the pebble
-    /// game ([`RankMethod::PebbleGame`]: the same rank, redundancies and clusters as the
-    /// witness, proven by Laman's theorem, without eliminating the Jacobian) with the exact
-    /// and modp backends; with a W-decomposition, every cluster search of it on a bar
-    /// framework too (its boundaries are still chosen at the witness). On by default; off,
-    /// the witness decides everything.
+    /// game ([`RankMethod::PebbleGame`]: the generic rank, redundancies and clusters — the
+    /// witness's at a generic witness — proven by Laman's theorem, without eliminating the
+    /// Jacobian) with the exact and modp backends; with a W-decomposition, its cluster
+    /// searches too (its boundaries are still chosen at the witness). On by default; off, the
+    /// witness decides everything.
     pub pebble_game: bool,
 }
 
@@ -842,7 +842,8 @@ fn analyze_in_field(
         decompose: options.decompose,
         removal_order: options.removal_order,
         decomposition_budget: options.decomposition_budget,
-        pebble_game: options.pebble_game,
+        // (The game decides the cluster searches where it decides the rank.)
+        pebble_game: pebbles.is_some(),
     };
     let in_field = |arithmetic: Arithmetic| -> Result<ClusterResult, AnalysisError> {
         let exact = EchelonOptions::default();

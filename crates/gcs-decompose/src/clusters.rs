@@ -37,9 +37,13 @@ pub struct ClusterOptions {
     /// elimination); past it, the subsystems not yet examined are reported as leaves and the
     /// statistics say the decomposition is incomplete.
     pub decomposition_budget: usize,
-    /// Whether subsystems that are 2D bar frameworks (points and distances between them) are
-    /// decided by the pebble game instead of at the witness, in exact fields (the generic
-    /// clusters, by Laman's theorem): what makes W-decompositions of large frameworks fast.
+    /// Whether, in a model that is a 2D bar framework (points and distances between them,
+    /// nothing else), the cluster searches — of the model and of the W-decomposition's
+    /// subsystems — are decided by the pebble game instead of at the witness, in exact fields:
+    /// the generic clusters (Laman's theorem), the witness's at a generic witness; what makes
+    /// W-decompositions of large frameworks fast. (Only for whole bar frameworks: in a model
+    /// with other constraints, a subsystem of points and distances can be special at every
+    /// solution — points that an incidence elsewhere keeps on a line.)
     pub pebble_game: bool,
 }
 
@@ -53,6 +57,16 @@ impl Default for ClusterOptions {
             pebble_game: true,
         }
     }
+}
+
+/// Whether `system` is a 2D framework of points and distances between distinct points.
+fn is_bar_framework(system: &System) -> bool {
+    use gcs_model::{Dim, EntityKind, Metric, Signature};
+    system.dim() == Dim::Two
+        && system.entities().iter().all(|e| e.kind() == EntityKind::Point)
+        && system.constraints().iter().all(|c| {
+            matches!(c.signature, Signature::Metric(Metric::DistancePointPoint(a, b)) if a != b)
+        })
 }
 
 /// The clusters (maximal rigid subsystems) of a whole system at a witness, computed in the
@@ -74,7 +88,7 @@ pub fn clusters<F: Field>(
     let generators = motions::generators::<F>(system, layout, &coords)?;
     let mut ctx = crate::rigid::Context::new(system, layout, jacobian, generators, echelon);
     ctx.method = options.method;
-    ctx.pebble = options.pebble_game && F::EXACT;
+    ctx.pebble = options.pebble_game && F::EXACT && is_bar_framework(system);
     let groups = ctx.constraint_groups(jacobian);
     let entities: Vec<EntityIdx> =
         system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();

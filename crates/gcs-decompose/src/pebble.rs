@@ -79,6 +79,8 @@ impl PebbleReport {
 #[derive(Clone, Debug)]
 pub struct Game {
     pebbles: Vec<u8>,
+    /// The free pebbles in all.
+    free: usize,
     /// Out-neighbours: `out[u]` holds `(v, bar)` for each accepted bar covered by `u` (at
     /// most two: a vertex's free pebbles and out-bars make two).
     out: Vec<Vec<(u32, u32)>>,
@@ -105,6 +107,7 @@ impl Game {
     pub fn new(n: usize) -> Game {
         Game {
             pebbles: vec![2; n],
+            free: 2 * n,
             out: vec![Vec::new(); n],
             degree: vec![0; n],
             seen: vec![0; n],
@@ -146,6 +149,7 @@ impl Game {
     fn cover(&mut self, x: usize, y: usize, bar: usize) {
         debug_assert!(self.pebbles[x] > 0);
         self.pebbles[x] -= 1;
+        self.free -= 1;
         self.out[x].push((y as u32, bar as u32));
         self.degree[x] += 1;
         self.degree[y] += 1;
@@ -163,6 +167,7 @@ impl Game {
             if let Some(k) = self.out[a].iter().position(|&(t, _)| t as usize == b) {
                 self.out[a].swap_remove(k);
                 self.pebbles[a] += 1;
+                self.free += 1;
                 self.degree[a] -= 1;
                 self.degree[b] -= 1;
                 return;
@@ -170,18 +175,18 @@ impl Game {
         }
     }
 
-    /// Whether the accepted bars leave exactly three free pebbles (the framework, on at least
-    /// two vertices, is rigid and independent so far), every other vertex's two covering bars.
+    /// Whether the accepted bars leave exactly three free pebbles: the framework (on at least
+    /// two vertices) is rigid, its bars independent.
     fn tight(&self) -> bool {
-        self.pebbles.iter().map(|p| usize::from(*p)).sum::<usize>() == 3
+        self.free == 3
     }
 
     /// In a tight framework ([`Game::tight`]): the vertices of the smallest tight set holding
-    /// `a` and `b` (the two first, then the others as found). With the three free pebbles gathered on `a` and `b`, no other
-    /// vertex holds one, so what is reachable from them along the directed bars is closed and
-    /// spans `2|X| − 3` bars; and every tight set holding both contains it, since its vertices
-    /// cover its own bars and nothing else (Lee–Streinu). `None` when the framework is not
-    /// tight or a vertex is out of range.
+    /// `a` and `b` (the two first, then the others as found). With the three free pebbles
+    /// gathered on `a` and `b`, no other vertex holds one, so what is reachable from them
+    /// along the directed bars is closed and spans `2|X| − 3` bars; and every tight set
+    /// holding both contains it, since its vertices cover its own bars and nothing else
+    /// (Lee–Streinu). `None` when the framework is not tight or a vertex is out of range.
     pub fn span(&mut self, a: usize, b: usize) -> Option<Vec<usize>> {
         let n = self.pebbles.len();
         if a >= n || b >= n || a == b || !self.tight() {

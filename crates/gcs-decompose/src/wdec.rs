@@ -261,29 +261,26 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     }
 
     fn wdec(&mut self, sub: &Subsystem<F>) -> Node {
-        let mut parts = self.pebble_parts(sub);
+        let certificate = self.pebble_certificate(sub);
         if sub.groups.len() <= 1
             || sub.entities.len() <= 1
-            || parts.as_ref().is_some_and(|p| p.is_empty())
+            || certificate.as_ref().is_some_and(|c| c.leaf)
         {
             return Self::leaf(sub);
         }
         for gi in self.removal_order(sub) {
-            if self.budget == 0 {
-                self.stats.complete = false;
-                return Self::leaf(sub);
-            }
-            if let Some(parts) = &parts
-                && let [a, b] = sub.groups[gi].entities[..]
-                && let (Some(a), Some(b)) = (
-                    sub.entities.iter().position(|e| *e == a),
-                    sub.entities.iter().position(|e| *e == b),
-                )
-                && parts.iter().all(|p| p[a] && p[b])
+            if let Some(c) = &certificate
+                && let (a, b) = c.bars[gi]
+                && c.common[a]
+                && c.common[b]
             {
                 // Fruitless, by the certificate: no search.
                 self.stats.fruitless_removals += 1;
                 continue;
+            }
+            if self.budget == 0 {
+                self.stats.complete = false;
+                return Self::leaf(sub);
             }
             self.budget -= 1;
             let mut without = sub.clone();
@@ -304,8 +301,6 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 self.stats.fruitless_removals += 1;
                 continue;
             }
-            // (The certificate's masks are not kept through the recursion.)
-            parts = None;
             if let Some(node) = self.split(sub, &without, &removed, nontrivial) {
                 return node;
             }
@@ -315,24 +310,23 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     }
 
     /// The pebble game's certificate of which removals are fruitful, with none tried, for a
-    /// minimally rigid 2D bar framework on four or more points: the smallest rigid parts
-    /// holding a point and all its neighbours that are not the whole (as point masks over
-    /// `sub.entities`); `None` where it does not apply. A removal is fruitful exactly when
-    /// one of those parts does not hold both ends of the removed bar (so with none, `sub` is
-    /// a leaf).
+    /// minimally rigid 2D bar framework on four or more points ([`Certificate`]); `None` where
+    /// it does not apply. Let `U_x` be the smallest rigid part holding the point `x` and all
+    /// its neighbours. A removal is fruitful exactly when some `U_x` that is not the whole
+    /// does not hold both ends of the removed bar — when an end is outside the intersection
+    /// of those parts (so with none, `sub` is a leaf).
     ///
     /// Why that is exact: a removal is fruitful when it leaves a cluster `M`, not the whole,
     /// with a point `x` all of whose bars lie in `M`. Such an `M` is tight in `sub` too (its
     /// `2|M| − 3` bars; the removed one cannot join two of its points, sparsity forbids it),
-    /// and holds `x` with its neighbours, so the smallest such part `U_x` lies in `M` and does
-    /// not hold both ends of the removed bar. Conversely, a tight `U_x` without both ends of
-    /// the removed bar stays rigid, inside a cluster that is not the whole (the rest is not
-    /// rigid) with `x` inside it. The smallest tight part holding `x` and its neighbours
-    /// `y₁ … y_d` is `x` with the union of the smallest tight sets holding `y₁` and each `y_j`
-    /// ([`crate::pebble::Game::span`]): each of those with `x` is tight (`x` brings its two
-    /// bars to them), they share `x` and `y₁`, and the union of tight sets sharing two points
-    /// is tight.
-    fn pebble_parts(&self, sub: &Subsystem<F>) -> Option<Vec<Vec<bool>>> {
+    /// and holds `x` with its neighbours, so `U_x` lies in `M` and does not hold both ends of
+    /// the removed bar. Conversely, a tight `U_x` without both ends of the removed bar stays
+    /// rigid, inside a cluster that is not the whole (the rest is not rigid) with `x` inside
+    /// it. `U_x` is `x` with the union of the smallest tight sets holding its first neighbour
+    /// `y₁` and each other `y_j` ([`crate::pebble::Game::span`]): each of those with `x` is
+    /// tight (`x` brings its two bars to them), they share `x` and `y₁`, and the union of
+    /// tight sets sharing two points is tight.
+    fn pebble_certificate(&self, sub: &Subsystem<F>) -> Option<Certificate> {
         if !self.ctx.pebble {
             return None;
         }
@@ -350,28 +344,33 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             neighbours[u].push(v);
             neighbours[v].push(u);
         }
-        let mut parts = Vec::new();
+        let mut common = vec![true; n];
+        let mut leaf = true;
+        // The part of the current point, marked with its index.
+        let mut mark = vec![usize::MAX; n];
         for (x, around) in neighbours.iter().enumerate() {
             let (&first, rest) = around.split_first()?;
-            let mut part = vec![false; n];
-            part[x] = true;
-            part[first] = true;
-            let mut size = 2 - usize::from(x == first);
+            mark[x] = x;
+            mark[first] = x;
+            let mut size = 2;
             for &y in rest {
                 if size == n {
                     // (The whole already: the usual case, after one span.)
                     break;
                 }
                 for v in game.span(first, y)? {
-                    size += usize::from(!part[v]);
-                    part[v] = true;
+                    size += usize::from(mark[v] != x);
+                    mark[v] = x;
                 }
             }
             if size < n {
-                parts.push(part);
+                leaf = false;
+                for (inside, m) in common.iter_mut().zip(&mark) {
+                    *inside &= *m == x;
+                }
             }
         }
-        Some(parts)
+        Some(Certificate { bars, common, leaf })
     }
 
     /// Replaces the non-trivial subsystems by their boundaries, decomposes the reduced system
@@ -545,6 +544,17 @@ fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<Signature> {
         .into_iter()
         .filter_map(|kind| system.relation(kind, &[a, b]))
         .collect()
+}
+
+/// What [`Decomposer::pebble_certificate`] finds.
+struct Certificate {
+    /// The bars, group by group, as positions in the subsystem's entities.
+    bars: Vec<(usize, usize)>,
+    /// The intersection of the proper parts `U_x` (everything when there is none): a removal
+    /// is fruitless exactly when both ends of its bar are in it.
+    common: Vec<bool>,
+    /// Whether there is no proper part: the subsystem is a leaf.
+    leaf: bool,
 }
 
 /// How many groups of a subsystem bind each entity: what tells the boundary of a cluster of

@@ -86,7 +86,7 @@ pub fn rectangles_drawn(n: usize, jitter: f64, seed: u64) -> System {
 /// horizontal and vertical segments between neighbours (`Horizontal`, `Vertical`), a `Fix` on
 /// the corner, the widths of the bottom row's cells and the heights of the left column's
 /// (`Distance`), and in each cell a circle placed from the cell's lower left corner
-/// (`DistanceX`, `DistanceY` to its centre `h….center`) with a `Radius`. Well-constrained as a
+/// (`DistanceX`, `DistanceY` to its centre `c….center`) with a `Radius`. Well-constrained as a
 /// whole (every point is bound to its row and column, so nothing decouples), no redundancy:
 /// about `4n²` entities, `(n + 1)² + 2n(n + 1) + n²`.
 ///
