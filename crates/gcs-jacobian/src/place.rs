@@ -38,7 +38,8 @@
 //!   as one group (their coordinates solved at once, which closes a loop through both).
 //! - *Carriers* ([`with_carriers`]): when that is not enough, the placement runs again on the
 //!   system with a line through each segment that is tangent at a point to a circle, carrying
-//!   its tangencies; a line tangent to two circles is placed before the segment's points.
+//!   its tangencies and the points incident to it; a line tangent to two circles, or through
+//!   two points placed, is placed before the segment's points.
 //! - Every candidate root of a quadratic is tried, not only the one nearest the preference,
 //!   and every side of a factorised quadric (a few combinations), the preference's first.
 //! - *Loops as polynomial systems* (modulo the prime only): a failing group is grown by the
@@ -925,12 +926,13 @@ pub(crate) fn drawn_turns(system: &System, layout: &Layout) -> bool {
 
 /// The system with a *carrier* line for each 2D segment that is tangent at a point to a
 /// circle (`TangentAt`): a line through its two end points, with the segment's tangencies (at
-/// the same points) and the tangency to the circle those points are on, and its direction
-/// constraints, repeated on it. These constraints follow from the system's wherever the
-/// segment's points are apart (the carrier is then the segment's line), so its solutions are
-/// the system's, each with the lines of its segments; placing them lets the placement build a
-/// segment's line before its points — a line tangent to two circles (the common tangent of
-/// a slot or a connecting rod), whose tangency points are then its feet from the centres.
+/// the same points) and the tangency to the circle those points are on, its direction
+/// constraints and the incidences of points to it, repeated on it. These constraints follow
+/// from the system's wherever the segment's points are apart (the carrier is then the
+/// segment's line), so its solutions are the system's, each with the lines of its segments;
+/// placing them lets the placement build a segment's line before its points — a line tangent
+/// to two circles (the common tangent of a slot or a connecting rod), whose tangency points
+/// are then its feet from the centres, or the line through two corners of fillets on it.
 /// `None` when no segment is tangent at a point, or an id is taken; else the system and the
 /// segments whose carriers it appends, in order.
 fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
@@ -1023,6 +1025,9 @@ fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
                 }
                 Signature::Horizontal(x) | Signature::Vertical(x) if x == s => {
                     add(&mut b, c.kind, &[&l])?;
+                }
+                Signature::IncidentPointLine { point, line } if line == s => {
+                    add(&mut b, ConstraintKind::Incident, &[&id(point), &l])?;
                 }
                 _ => {}
             }
