@@ -38,7 +38,15 @@
 //!   as one group (their coordinates solved at once, which closes a loop through both).
 //! - *Carriers* ([`with_carriers`]): when that is not enough, the placement runs again on the
 //!   system with a line through each segment that is tangent at a point to a circle, carrying
-//!   its tangencies; a line tangent to two circles is placed before the segment's points.
+//!   its tangencies and the points incident to it; a line tangent to two circles, or through
+//!   two points placed, is placed before the segment's points.
+//! - *The fallback* ([`Placer::fallback`]): when that fails too, all of it again on the system
+//!   with the tangencies of circles their points imply ([`with_implied`]), in another order:
+//!   the point of a tangency waits for its two curves (it is then their foot), and the
+//!   learning puts a failing group before the curves it suspects (ahead of points) before it
+//!   merges a loop into one group. The corner of a fillet on four curves (two construction
+//!   lines, the side, the arc) is then placed from two of them and the others through it, and
+//!   the fillet from its tangencies and equal radii, its end points last.
 //! - Every candidate root of a quadratic is tried, not only the one nearest the preference,
 //!   and every side of a factorised quadric (a few combinations), the preference's first.
 //! - *Loops as polynomial systems* (modulo the prime only): a failing group is grown by the
@@ -144,6 +152,9 @@ struct Learned {
     /// Whether the group (by root) was grown from failures (beyond coincident points): only
     /// those are worth a polynomial solve ([`Placer::place_algebraic`]).
     grown: Vec<bool>,
+    /// Whether an order is learnt before the loop to the failure is merged into one group,
+    /// modulo the prime too (the fallback of [`place`]).
+    orders_first: bool,
 }
 
 /// The root of `x` in the union-find `parent`.
@@ -160,8 +171,12 @@ impl Learned {
     /// segment it joins).
     fn new(system: &System) -> Learned {
         let n = system.entities().len();
-        let mut learned =
-            Learned { parent: (0..n as u32).collect(), before: Vec::new(), grown: vec![false; n] };
+        let mut learned = Learned {
+            parent: (0..n as u32).collect(),
+            before: Vec::new(),
+            grown: vec![false; n],
+            orders_first: false,
+        };
         for c in system.constraints() {
             if let Signature::CoincidentPoints(a, b) = c.signature {
                 let (ra, rb) = (learned.find(a), learned.find(b));
@@ -196,10 +211,15 @@ impl Learned {
         let groupable = |e: EntityIdx| layout.repr(e).is_some_and(|r| !r.homogeneous());
         let g = self.find(f.group);
         // Modulo the prime, the loop from the last free choice to the failure is placed at once,
-        // as a polynomial system, when it is small enough.
+        // as a polynomial system, when it is small enough (but for the fallback, which learns
+        // orders first, as over ℚ).
         let chain: Vec<EntityIdx> =
             f.chain.iter().map(|e| self.find(*e)).filter(|e| *e != g).collect();
-        if !chain.is_empty() && groupable(g) && chain.iter().all(|e| groupable(*e)) {
+        if !self.orders_first
+            && !chain.is_empty()
+            && groupable(g)
+            && chain.iter().all(|e| groupable(*e))
+        {
             let columns: usize = (0..self.parent.len() as u32)
                 .filter(|&i| {
                     let r = EntityIdx(root(&self.parent, i));
@@ -423,6 +443,10 @@ struct Placer<'a> {
     taken: TurnsTaken,
     /// Over ℚ: the value of [`qla::rational_work`] at which the run stops ([`RATIONAL_WORK`]).
     work_limit: u64,
+    /// The fallback of [`place`]: the point of a tangency at a point waits for its curves
+    /// ([`Self::awaits_curves`]), and suspects that are curves come before points
+    /// ([`Self::suspects`]).
+    fallback: bool,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -477,12 +501,9 @@ pub(crate) fn place(
     options: &PlaceOptions,
 ) -> Result<Vec<Q>, PlaceFailure> {
     let first = place_with(system, layout, pref, scale, options, false);
-    // Where the construction stopped at a tangency of two circles at a point, again with the
-    // tangencies of circles their points imply.
-    if let Err(f) = &first
-        && f.constraints.iter().any(|c| {
-            matches!(system.constraint(*c).signature, Signature::TangentAtCircleCircle { .. })
-        })
+    // The fallback: again with the tangencies of circles their points imply, in another order
+    // (see [`Placer::fallback`]).
+    if first.is_err()
         && let Ok(x) = place_with(system, layout, pref, scale, options, true)
     {
         return Ok(x);
@@ -514,7 +535,7 @@ fn place_with(
         constraints: f.constraints.into_iter().filter(|c| c.index() < ncons).collect(),
         no_root: f.no_root,
     };
-    let plain = place_in(system, layout, pref, scale, options).map_err(own);
+    let plain = place_in(system, layout, pref, scale, options, tangencies).map_err(own);
     if plain.is_ok() {
         return plain;
     }
@@ -537,7 +558,7 @@ fn place_with(
             aug_pref[col] = v;
         }
     }
-    match place_in(&augmented, &aug_layout, &aug_pref, scale, options) {
+    match place_in(&augmented, &aug_layout, &aug_pref, scale, options, tangencies) {
         Ok(x) => Ok(x[..layout.ncols()].to_vec()),
         Err(e) => plain.map_err(|mut p| {
             p.no_root |= e.no_root;
@@ -686,13 +707,14 @@ fn height_bits(coords: &[Q]) -> u64 {
     coords.iter().filter_map(Num::rational).map(gcs_rank::Rat::height_bits).max().unwrap_or(0)
 }
 
-/// [`place`] in one system.
+/// [`place`] in one system; `fallback` for [`place`]'s fallback (see [`Placer::fallback`]).
 fn place_in(
     system: &System,
     layout: &Layout,
     pref: &[Q],
     scale: f64,
     options: &PlaceOptions,
+    fallback: bool,
 ) -> Result<Vec<Q>, PlaceFailure> {
     let nent = system.entities().len();
     let ncons = system.constraints().len();
@@ -755,7 +777,8 @@ fn place_in(
     let mut failed_height = 0;
     let mut rng = SplitMix64::new(options.seed ^ 0x5EED);
     let mut tiebreak: Vec<u64> = (0..nent as u64).collect();
-    let mut learned = Learned::new(system);
+    let fresh = || Learned { orders_first: fallback, ..Learned::new(system) };
+    let mut learned = fresh();
     let (mut epoch, mut run, mut learnt, mut retries) = (0, 0usize, 0, 0);
     let mut failure = None;
     let mut any_no_root = false;
@@ -809,6 +832,7 @@ fn place_in(
             turns: turns.map(|t| (t, &drawing[..])),
             taken: TurnsTaken::default(),
             work_limit,
+            fallback,
         };
         p.choose_variants();
         if options.modular {
@@ -858,7 +882,7 @@ fn place_in(
                 break;
             }
             tiebreak = (0..nent).map(|_| rng.next_u64()).collect();
-            learned = Learned::new(system);
+            learned = fresh();
         }
         failure.get_or_insert(f.public);
     }
@@ -925,12 +949,13 @@ pub(crate) fn drawn_turns(system: &System, layout: &Layout) -> bool {
 
 /// The system with a *carrier* line for each 2D segment that is tangent at a point to a
 /// circle (`TangentAt`): a line through its two end points, with the segment's tangencies (at
-/// the same points) and the tangency to the circle those points are on, and its direction
-/// constraints, repeated on it. These constraints follow from the system's wherever the
-/// segment's points are apart (the carrier is then the segment's line), so its solutions are
-/// the system's, each with the lines of its segments; placing them lets the placement build a
-/// segment's line before its points — a line tangent to two circles (the common tangent of
-/// a slot or a connecting rod), whose tangency points are then its feet from the centres.
+/// the same points) and the tangency to the circle those points are on, its direction
+/// constraints and the incidences of points to it, repeated on it. These constraints follow
+/// from the system's wherever the segment's points are apart (the carrier is then the
+/// segment's line), so its solutions are the system's, each with the lines of its segments;
+/// placing them lets the placement build a segment's line before its points — a line tangent
+/// to two circles (the common tangent of a slot or a connecting rod), whose tangency points
+/// are then its feet from the centres, or the line through two corners of fillets on it.
 /// `None` when no segment is tangent at a point, or an id is taken; else the system and the
 /// segments whose carriers it appends, in order.
 fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
@@ -1024,6 +1049,9 @@ fn with_carriers(system: &System) -> Option<(System, Vec<EntityIdx>)> {
                 Signature::Horizontal(x) | Signature::Vertical(x) if x == s => {
                     add(&mut b, c.kind, &[&l])?;
                 }
+                Signature::IncidentPointLine { point, line } if line == s => {
+                    add(&mut b, ConstraintKind::Incident, &[&id(point), &l])?;
+                }
                 _ => {}
             }
         }
@@ -1064,6 +1092,9 @@ impl Placer<'_> {
     /// DOC of the constraints binding group `g` to placed entities (or known directions, or
     /// the frame) only; those between its own members do not count.
     fn score(&self, g: EntityIdx) -> usize {
+        if self.fallback && self.awaits_curves(g) {
+            return 0;
+        }
         self.ready(g)
             .iter()
             .filter(|(c, known)| {
@@ -1074,6 +1105,31 @@ impl Placer<'_> {
             })
             .map(|(c, _)| self.system.constraint(*c).doc)
             .sum()
+    }
+
+    /// Whether group `g` holds the point of a tangency at a point (`TangentAt`) of two curves
+    /// not both placed, neither of which has the point among its base entities (two circles,
+    /// or a circle and a line that is no segment ending there: a carrier of
+    /// [`with_carriers`]). In the fallback such a point waits for its curves: once they are
+    /// placed (tangent by the tangency [`with_implied`] adds, or the carrier's) it is their
+    /// foot, while placed first it decides where they touch, and with it the radius of a
+    /// fillet whose other tangencies and equal radii decide it too.
+    fn awaits_curves(&self, g: EntityIdx) -> bool {
+        self.members[g.index()].iter().any(|&m| {
+            self.adjacent[m.index()].iter().any(|c| {
+                let (a, b) = match self.system.constraint(*c).signature {
+                    Signature::TangentAtCircleCircle { a, b, at } if at == m => (a, b),
+                    Signature::TangentAtLineCircle { line, circle, at } if at == m => {
+                        (line, circle)
+                    }
+                    _ => return false,
+                };
+                let apart = |curve: EntityIdx| {
+                    self.system.base_entities(curve).iter().all(|x| self.group[x.index()] != g)
+                };
+                apart(a) && apart(b) && !(self.line_placed(a) && self.line_placed(b))
+            })
+        })
     }
 
     /// The exact constraints on group `g` whose other base entities are all placed, or are
@@ -1217,11 +1273,19 @@ impl Placer<'_> {
 
     /// The groups whose placement fixed what group `g`'s constraints ask, that were placed
     /// with a free choice: through the placed entities of its ready constraints and, from
-    /// them, the groups that determined those; most recently placed first.
+    /// them, the groups that determined those; most recently placed first. In the fallback,
+    /// groups of points come after the others (a curve placed with a free choice is a guess
+    /// that the points on it decide, a radius or a line; a point on a curve placed with a free
+    /// choice is where a curve still free passes, which other points decide too).
     fn suspects(&self, g: EntityIdx, ready: &[ConstraintIdx]) -> Vec<EntityIdx> {
         let mut free: Vec<EntityIdx> =
             self.ancestors(g, ready).into_iter().filter(|h| self.freedom[h.index()] > 0).collect();
         free.sort_by_key(|h| Reverse(self.step[h.index()]));
+        if self.fallback {
+            let point =
+                |e: &EntityIdx| self.system.entity(*e).kind() == gcs_model::EntityKind::Point;
+            free.sort_by_key(|h| self.members[h.index()].iter().all(point));
+        }
         free
     }
 
@@ -2573,5 +2637,95 @@ impl AffineMap {
             }
         }
         (g, c)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Layout, WitnessOptions, WitnessSource, find_witness};
+
+    /// Two fillets on each of two radial sides between two concentric arcs (an Onshape sketch,
+    /// 00271987…/4, its dimensions and its circular pattern left out). Each fillet's corner is
+    /// incident to four curves: the radial construction line, a construction circle, the side
+    /// and the arc; each side passes through two corners, and the fillets' radii are equal.
+    const FILLET_CORNERS: &str = r#"System(
+        dim: 2,
+        entities: [
+            Circle(id: "inner", center: [0, 0], radius: 57.5, construction: true),
+            Circle(id: "outer", center: [0, 0], radius: 72.5, construction: true),
+            Point(id: "ray1.start", at: [0, 0]),
+            Point(id: "ray1.end", at: [-48.943986369, -59.118936884]),
+            Segment(id: "ray1", from: "ray1.start", to: "ray1.end", construction: true),
+            Point(id: "ray2.start", at: [0, 0]),
+            Point(id: "ray2.end", at: [-37.934521584, -66.719821434]),
+            Segment(id: "ray2", from: "ray2.start", to: "ray2.end", construction: true),
+            Arc(id: "out_arc", center: [0, 0], radius: 72.49999999985037, start: [-41.97003189, -59.116549486], end: [-40.40400408, -60.197727983]),
+            Arc(id: "in_arc", center: [0, 0], radius: 57.50000000032462, start: [-33.007321924, -47.082551964], end: [-32.327752624, -47.551723526]),
+            Point(id: "side2.start", at: [-30.792293376, -54.157960344]),
+            Point(id: "side2.end", at: [-33.270952868, -58.517464874]),
+            Segment(id: "side2", from: "side2.start", to: "side2.end"),
+            Point(id: "side1.start", at: [-42.926943472, -51.85101276]),
+            Point(id: "side1.end", at: [-39.72892037, -47.988153603]),
+            Segment(id: "side1", from: "side1.start", to: "side1.end"),
+            Point(id: "f1.corner", at: [-36.66813311, -44.291060206]),
+            Arc(id: "f1.arc", center: [-35.87752383, -51.176686917], radius: 4.999999999458234, start: [-33.007321924, -47.082551964], end: [-39.72892037, -47.988153603]),
+            Point(id: "f2.corner", at: [-28.419999884, -49.985533973]),
+            Arc(id: "f2.arc", center: [-35.138861548, -51.686656006], radius: 5.000000000486104, start: [-30.792293376, -54.157960344], end: [-32.327752624, -47.551723526]),
+            Point(id: "f3.corner", at: [-35.833912897, -63.025238488]),
+            Arc(id: "f3.arc", center: [-37.61752104, -56.046160536], radius: 4.999999999919774, start: [-40.40400408, -60.197727983], end: [-33.270952868, -58.517464874]),
+            Point(id: "f4.corner", at: [-46.233733052, -55.845249825]),
+            Arc(id: "f4.arc", center: [-39.075546932, -55.039546074], radius: 5.0000000002811795, start: [-42.926943472, -51.85101276], end: [-41.97003189, -59.116549486]),
+        ],
+        constraints: [
+            Coincident(id: "outer.centerSnap0", a: "outer.center", b: "inner.center"),
+            Coincident(id: "ray1.startSnap0", a: "ray1.start", b: "inner.center"),
+            Coincident(id: "ray2.startSnap0", a: "ray2.start", b: "inner.center"),
+            Incident(id: "out_arc.startSnap0", a: "f4.corner", b: "ray1"),
+            Incident(id: "out_arc.startSnap1", a: "f4.corner", b: "outer"),
+            Incident(id: "out_arc.endSnap0", a: "f3.corner", b: "ray2"),
+            Coincident(id: "out_arc.centerSnap0", a: "out_arc.center", b: "inner.center"),
+            Incident(id: "in_arc.startSnap0", a: "f1.corner", b: "ray1"),
+            Incident(id: "in_arc.startSnap1", a: "f1.corner", b: "inner"),
+            Incident(id: "in_arc.endSnap0", a: "f2.corner", b: "ray2"),
+            Coincident(id: "in_arc.centerSnap0", a: "in_arc.center", b: "outer.center"),
+            Incident(id: "f1.corner.coincidentB", a: "f1.corner", b: "side1"),
+            Incident(id: "f1.corner.coincident", a: "f1.corner", b: "in_arc"),
+            Coincident(id: "f1.arc.startSnap", a: "f1.arc.start", b: "in_arc.start"),
+            Coincident(id: "f1.arc.endSnap", a: "f1.arc.end", b: "side1.end"),
+            TangentAt(id: "f1.tangentA", a: "in_arc", b: "f1.arc", at: "in_arc.start"),
+            TangentAt(id: "f1.tangentB", a: "side1", b: "f1.arc", at: "side1.end"),
+            Incident(id: "f2.corner.coincidentB", a: "f2.corner", b: "side2"),
+            Incident(id: "f2.corner.coincident", a: "f2.corner", b: "in_arc"),
+            Coincident(id: "f2.arc.startSnap", a: "f2.arc.start", b: "side2.start"),
+            Coincident(id: "f2.arc.endSnap", a: "f2.arc.end", b: "in_arc.end"),
+            TangentAt(id: "f2.tangentA", a: "in_arc", b: "f2.arc", at: "in_arc.end"),
+            TangentAt(id: "f2.tangentB", a: "side2", b: "f2.arc", at: "side2.start"),
+            EqualRadius(id: "f2.equal", a: "f2.arc", b: "f1.arc"),
+            Incident(id: "f3.corner.coincidentB", a: "f3.corner", b: "side2"),
+            Incident(id: "f3.corner.coincident", a: "f3.corner", b: "out_arc"),
+            Coincident(id: "f3.arc.startSnap", a: "f3.arc.start", b: "out_arc.end"),
+            Coincident(id: "f3.arc.endSnap", a: "f3.arc.end", b: "side2.end"),
+            TangentAt(id: "f3.tangentA", a: "out_arc", b: "f3.arc", at: "out_arc.end"),
+            TangentAt(id: "f3.tangentB", a: "side2", b: "f3.arc", at: "side2.end"),
+            EqualRadius(id: "f3.equal", a: "f3.arc", b: "f1.arc"),
+            Incident(id: "f4.corner.coincidentB", a: "f4.corner", b: "side1"),
+            Incident(id: "f4.corner.coincident", a: "f4.corner", b: "out_arc"),
+            Coincident(id: "f4.arc.startSnap", a: "f4.arc.start", b: "side1.start"),
+            Coincident(id: "f4.arc.endSnap", a: "f4.arc.end", b: "out_arc.start"),
+            TangentAt(id: "f4.tangentA", a: "out_arc", b: "f4.arc", at: "out_arc.start"),
+            TangentAt(id: "f4.tangentB", a: "side1", b: "f4.arc", at: "side1.start"),
+            EqualRadius(id: "f4.equal", a: "f4.arc", b: "f1.arc"),
+        ],
+    )"#;
+
+    /// Before the fallback's order, every run placed the arcs' radii, or the fillets' end
+    /// points, with a free choice that a corner or a fillet decides later, and failed there
+    /// (the learning merged the loops and never found the order).
+    #[test]
+    fn fillet_corners_on_four_curves_get_a_modular_witness() {
+        let system = gcs_model::System::from_ron_str(FILLET_CORNERS, None).unwrap();
+        let layout = Layout::new(&system);
+        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+        assert_eq!(witness.source, WitnessSource::Modular);
     }
 }
