@@ -203,15 +203,19 @@ mod tests {
         shortcut_on(&System::from_ron_str(&text, Some(name)).unwrap(), name)
     }
 
-    fn shortcut_on(system: &System, name: &str) -> bool {
-        let system = system.clone();
-        let layout = Layout::new(&system);
-        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
-        let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
+    /// Runs `f` on the cluster search's context for `system` at its default witness (modulo
+    /// the prime) and the whole system as a subsystem.
+    fn with_context<R>(
+        system: &System,
+        f: impl FnOnce(&mut crate::rigid::Context<'_, ModP>, &crate::rigid::Subsystem<ModP>) -> R,
+    ) -> R {
+        let layout = Layout::new(system);
+        let witness = find_witness(system, &layout, &WitnessOptions::default()).unwrap();
+        let jacobian: Jacobian<ModP> = witness.jacobian(system, &layout).unwrap();
         let coords: Vec<ModP> = witness.coords_in().unwrap();
-        let generators = motions::generators::<ModP>(&system, &layout, &coords).unwrap();
+        let generators = motions::generators::<ModP>(system, &layout, &coords).unwrap();
         let mut ctx = crate::rigid::Context::new(
-            &system,
+            system,
             &layout,
             &jacobian,
             generators,
@@ -220,12 +224,17 @@ mod tests {
         let groups = ctx.constraint_groups(&jacobian);
         let entities: Vec<EntityIdx> =
             system.entity_indices().filter(|e| layout.repr(*e).is_some()).collect();
-        let sub = crate::rigid::Subsystem { entities, groups };
-        let Some(mut fast) = crate::rigid::open_chain(&ctx, &sub) else { return false };
-        fast.sort_by(|a, b| a.entities.cmp(&b.entities));
-        ctx.method = ClusterMethod::Kernel;
-        assert_eq!(fast, crate::rigid::clusters(&ctx, &sub), "{name}");
-        true
+        f(&mut ctx, &crate::rigid::Subsystem { entities, groups })
+    }
+
+    fn shortcut_on(system: &System, name: &str) -> bool {
+        with_context(system, |ctx, sub| {
+            let Some(mut fast) = crate::rigid::open_chain(ctx, sub) else { return false };
+            fast.sort_by(|a, b| a.entities.cmp(&b.entities));
+            ctx.method = ClusterMethod::Kernel;
+            assert_eq!(fast, crate::rigid::clusters(ctx, sub), "{name}");
+            true
+        })
     }
 
     /// The clusters at the default witness (modulo the prime), as lists of entity ids, and
@@ -284,35 +293,22 @@ mod tests {
         let mut compared = 0;
         for seed in 1..=40 {
             let system = random_framework(5 + (seed as usize % 9), seed);
-            let layout = Layout::new(&system);
-            let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
-            let jacobian: Jacobian<ModP> = witness.jacobian(&system, &layout).unwrap();
-            let coords: Vec<ModP> = witness.coords_in().unwrap();
-            let generators = motions::generators::<ModP>(&system, &layout, &coords).unwrap();
-            let mut ctx = crate::rigid::Context::new(
-                &system,
-                &layout,
-                &jacobian,
-                generators,
-                EchelonOptions::default(),
-            );
-            ctx.method = ClusterMethod::Kernel;
-            let groups = ctx.constraint_groups(&jacobian);
-            let entities: Vec<EntityIdx> = system.entity_indices().collect();
-            let whole = crate::rigid::Subsystem { entities, groups };
-            let mut subs = vec![whole.clone()];
-            for g in 0..whole.groups.len() {
-                let mut without = whole.clone();
-                without.groups.remove(g);
-                subs.push(without);
-            }
-            for sub in &subs {
-                ctx.pebble = false;
-                let searched = crate::rigid::clusters(&ctx, sub);
-                ctx.pebble = true;
-                assert_eq!(crate::rigid::clusters(&ctx, sub), searched, "seed {seed}");
-                compared += 1;
-            }
+            compared += with_context(&system, |ctx, whole| {
+                ctx.method = ClusterMethod::Kernel;
+                let mut subs = vec![whole.clone()];
+                for g in 0..whole.groups.len() {
+                    let mut without = whole.clone();
+                    without.groups.remove(g);
+                    subs.push(without);
+                }
+                for sub in &subs {
+                    ctx.pebble = false;
+                    let searched = crate::rigid::clusters(ctx, sub);
+                    ctx.pebble = true;
+                    assert_eq!(crate::rigid::clusters(ctx, sub), searched, "seed {seed}");
+                }
+                subs.len()
+            });
         }
         assert!(compared > 400, "{compared}");
     }
