@@ -145,11 +145,11 @@ pub fn grid(n: usize) -> System {
         }
     }
     let half = |v: i64| BigRational::new(v.into(), 2.into());
-    for i in 0..n {
-        for j in 0..n {
+    for (i, y) in ys.iter().take(n).enumerate() {
+        for (j, x) in xs.iter().take(n).enumerate() {
             let (w, h) = (width(j), height(i));
             let c = format!("c{i}_{j}");
-            let centre = vec![int(2 * xs[j] + w) / int(2), int(2 * ys[i] + h) / int(2)];
+            let centre = vec![int(2 * x + w) / int(2), int(2 * y + h) / int(2)];
             ok(b.circle(&c, Some(centre), Some(int(1))));
             let centre = format!("{c}.center");
             let corner = p(i, j);
