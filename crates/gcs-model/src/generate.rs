@@ -88,12 +88,13 @@ pub fn rectangles_drawn(n: usize, jitter: f64, seed: u64) -> System {
 /// (`Distance`), and in each cell a circle placed from the cell's lower left corner
 /// (`DistanceX`, `DistanceY` to its centre `c….center`) with a `Radius`. Well-constrained as a
 /// whole (every point is bound to its row and column, so nothing decouples), no redundancy:
-/// about `4n²` entities, `(n + 1)² + 2n(n + 1) + n²`.
+/// about `4n²` entities as written, `(n + 1)² + 2n(n + 1) + n²` (and the circles' `n²`
+/// implicit centres).
 ///
 /// # Example
 /// ```
 /// let s = gcs_model::generate::grid(3);
-/// assert_eq!(s.entities().len(), 16 + 24 + 9);
+/// assert_eq!(s.entities().len(), 16 + 24 + 9 + 9);
 /// assert_eq!(s.dof_sum(), s.doc_sum());
 /// ```
 pub fn grid(n: usize) -> System {
