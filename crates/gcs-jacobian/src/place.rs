@@ -49,6 +49,13 @@
 //!   the fillet from its tangencies and equal radii, its end points last.
 //! - Every candidate root of a quadratic is tried, not only the one nearest the preference,
 //!   and every side of a factorised quadric (a few combinations), the preference's first.
+//! - *Square roots tossed again* (modulo the prime only, the last attempt of [`place`]): a
+//!   construction that lacks a square root (a point on a line and a circle both placed) has
+//!   one for about half the free choices upstream; the most recent free choice it depends on
+//!   is taken back, with every placement that followed from it, and taken again
+//!   ([`Placer::unplace_from`]), a bounded number of times. A sketch with many such points
+//!   (Onshape's "visual sharp" corners of fillets on arcs) would otherwise need every toss
+//!   to land at once.
 //! - *Loops as polynomial systems* (modulo the prime only): a failing group is grown by the
 //!   loop from the last free choice to it ([`Placer::chain`]), and a grown group the
 //!   construction cannot place is solved as a polynomial system ([`Placer::place_algebraic`],
@@ -57,7 +64,8 @@
 //!
 //! None of this changes what a witness is: every choice is a random point of the solution set
 //! of the constraints imposed at that step, so the witness is a generic point of the
-//! constraints as before. Every parameter-free constraint binding a group to placed entities
+//! constraints as before (a choice taken again keeps only choices with a root: about half of
+//! them, not a special position). Every parameter-free constraint binding a group to placed entities
 //! is imposed, except one whose equation is neither linear nor a difference of squares in the
 //! group (a tangency at a point of a segment through that point, both being placed): it is
 //! checked exactly once the others have placed the group, and random choices satisfy it only
@@ -101,6 +109,9 @@ pub(crate) struct PlaceOptions {
     /// circle's centre or a point by an irrational fraction of a turn is placed there exactly
     /// ([`Placer::place_turned`]); what was taken is told here.
     pub(crate) turns: Option<std::rc::Rc<std::cell::RefCell<TurnsTaken>>>,
+    /// Modulo the prime: a construction that lacks a square root takes the free choices
+    /// upstream again ([`Placer::unplace_from`]). [`place`] sets it for its last attempt.
+    pub(crate) backtrack: bool,
 }
 
 /// The turns a placement took from the drawing ([`PlaceOptions::turns`]).
@@ -447,6 +458,8 @@ struct Placer<'a> {
     /// ([`Self::awaits_curves`]), and suspects that are curves come before points
     /// ([`Self::suspects`]).
     fallback: bool,
+    /// [`PlaceOptions::backtrack`].
+    backtrack: bool,
 }
 
 fn is_exact_kind(kind: ConstraintKind) -> bool {
@@ -507,6 +520,20 @@ pub(crate) fn place(
         && let Ok(x) = place_with(system, layout, pref, scale, options, true)
     {
         return Ok(x);
+    }
+    // Modulo the prime, last: all of it again, taking free choices again where a square root
+    // is missing. (Last, so that what placed before places as before.)
+    if first.is_err() && options.modular && options.turns.is_none() && !options.backtrack {
+        // (With a budget of its own for the polynomial solves of loops: the attempts before
+        // may have spent theirs.)
+        let again = PlaceOptions {
+            backtrack: true,
+            algebra_budget: std::rc::Rc::new(std::cell::Cell::new(2 * ALGEBRA_WORK)),
+            ..options.clone()
+        };
+        if let Ok(x) = place(system, layout, pref, scale, &again) {
+            return Ok(x);
+        }
     }
     first
 }
@@ -702,6 +729,11 @@ const RATIONAL_WORK: u64 = 2_000_000;
 /// failed runs grew large numbers cost a tenth of the corpus' time.
 const ORDER_HEIGHT_CAP: u64 = 256;
 
+/// Modulo the prime, how often the free choices upstream of a group are taken again when its
+/// construction lacks a square root (each time it has one with probability about ½), and, times
+/// the number of groups, how often in one run.
+const MAX_BACKTRACKS: usize = 16;
+
 /// The largest height in bits of the rationals among `coords` (residues count as none).
 fn height_bits(coords: &[Q]) -> u64 {
     coords.iter().filter_map(Num::rational).map(gcs_rank::Rat::height_bits).max().unwrap_or(0)
@@ -833,6 +865,7 @@ fn place_in(
             taken: TurnsTaken::default(),
             work_limit,
             fallback,
+            backtrack: options.backtrack,
         };
         p.choose_variants();
         if options.modular {
@@ -1327,6 +1360,10 @@ impl Placer<'_> {
         }
         let mut waiting: Vec<EntityIdx> = Vec::new();
         let mut failures: Vec<RunFailure> = Vec::new();
+        // Modulo the prime: the free choices taken again for each group's missing square
+        // roots, and in all.
+        let mut tosses = vec![0usize; nent];
+        let mut backtracks = 0;
         let mut steps = 0;
         while let Some((s, _, i)) = heap.pop() {
             if !self.modular && qla::rational_work() > self.work_limit {
@@ -1415,6 +1452,53 @@ impl Placer<'_> {
                 failed_at[g.index()] = Some(s);
                 let constraints: Vec<ConstraintIdx> = ready.iter().map(|(c, _)| *c).collect();
                 let suspects = self.suspects(g, &constraints);
+                // Modulo the prime, a square root missing is a coin toss of the free choices
+                // upstream: those are taken again, from the most recent, and what followed
+                // from them is placed again.
+                if self.backtrack
+                    && self.modular
+                    && self.no_root
+                    && backtracks < MAX_BACKTRACKS * roots.len()
+                    && tosses[g.index()] < MAX_BACKTRACKS
+                {
+                    let mut by_recency = suspects.clone();
+                    by_recency.sort_by_key(|h| Reverse(self.step[h.index()]));
+                    let k = (tosses[g.index()] / 4).min(by_recency.len().saturating_sub(1));
+                    if let Some(&t) = by_recency.get(k) {
+                        tosses[g.index()] += 1;
+                        backtracks += 1;
+                        let undone = self.unplace_from(t, &roots);
+                        // The groups taken back, the one that failed, and the neighbours
+                        // whose scores fell: queued again at their scores now.
+                        let mut seen = vec![false; nent];
+                        let mut touched: Vec<EntityIdx> = Vec::new();
+                        for h in std::iter::once(g).chain(undone.iter().copied()) {
+                            if !std::mem::replace(&mut seen[h.index()], true) {
+                                touched.push(h);
+                            }
+                        }
+                        for h in &undone {
+                            for m in &self.members[h.index()] {
+                                for c in &self.adjacent[m.index()] {
+                                    for b in &self.bases[c.index()] {
+                                        let x = self.group[b.index()];
+                                        if !self.placed[b.index()]
+                                            && !std::mem::replace(&mut seen[x.index()], true)
+                                        {
+                                            touched.push(x);
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                        for h in touched {
+                            failed_at[h.index()] = None;
+                            score[h.index()] = self.score(h);
+                            heap.push((score[h.index()], Reverse(tiebreak[h.index()]), h.0));
+                        }
+                        continue;
+                    }
+                }
                 let chain = match suspects.first() {
                     Some(s) if self.modular => self.chain(g, &constraints, *s),
                     _ => Vec::new(),
@@ -1457,6 +1541,46 @@ impl Placer<'_> {
             f.public = r;
         }
         Err(f)
+    }
+
+    /// Takes back the placement of group `t` and of every group placed after it that depends
+    /// on it (through the groups that determined it), the groups taken back in the order they
+    /// were placed; their coordinates return to the preference.
+    fn unplace_from(&mut self, t: EntityIdx, roots: &[EntityIdx]) -> Vec<EntityIdx> {
+        let Some(start) = self.step[t.index()] else { return Vec::new() };
+        let mut later: Vec<(usize, EntityIdx)> = roots
+            .iter()
+            .filter_map(|h| self.step[h.index()].filter(|s| *s > start).map(|s| (s, *h)))
+            .collect();
+        later.sort_unstable();
+        let mut undone = vec![t];
+        let mut gone = vec![false; self.system.entities().len()];
+        gone[t.index()] = true;
+        for (_, h) in later {
+            if self.determiners[h.index()].iter().any(|d| gone[d.index()]) {
+                gone[h.index()] = true;
+                undone.push(h);
+            }
+        }
+        for h in &undone {
+            for m in &self.members[h.index()] {
+                self.placed[m.index()] = false;
+                for c in self.layout.columns(*m) {
+                    self.coords[c] = self.pref[c].clone();
+                }
+            }
+            self.step[h.index()] = None;
+            self.freedom[h.index()] = 0;
+            self.determiners[h.index()].clear();
+        }
+        // A direction class stays known while anchored or with a member placed.
+        for root in 0..self.class_known.len() {
+            if self.class_known[root] && self.directions.anchor[root].is_none() {
+                let members = &self.directions.members[root];
+                self.class_known[root] = members.iter().any(|l| self.line_placed(*l));
+            }
+        }
+        undone
     }
 
     /// Linear equations making the normal of a 2D line or a plane parallel to a rational
@@ -2724,6 +2848,52 @@ mod tests {
     #[test]
     fn fillet_corners_on_four_curves_get_a_modular_witness() {
         let system = gcs_model::System::from_ron_str(FILLET_CORNERS, None).unwrap();
+        let layout = Layout::new(&system);
+        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+        assert_eq!(witness.source, WitnessSource::Modular);
+    }
+
+    /// `n` chords, each of its own circle, and a point on each chord and on another circle,
+    /// all the circles concentric, no sketch: the point's construction needs a square root,
+    /// modulo the prime one half of the time, and the chords' second end points are placed
+    /// first (ties go in file order). Learning places each point before its chord's second end
+    /// (then both are rational), one lesson per chord: more chords than lessons. The whole
+    /// runs tried again (8) do not get 24 roots at once either; without the backtracking of
+    /// [`super::Placer::unplace_from`] the witness search fails (checked when this was
+    /// written). With it, each end point is taken again until its point has a root.
+    fn chords(n: usize) -> String {
+        let mut entities = vec![r#"Circle(id: "c0")"#.to_string()];
+        let mut constraints = Vec::new();
+        for i in 0..n {
+            if i > 0 {
+                entities.push(format!(r#"Circle(id: "c{i}")"#));
+                constraints.push(format!(r#"Concentric(id: "cc{i}", a: "c{i}", b: "c0")"#));
+            }
+            entities.push(format!(r#"Circle(id: "d{i}")"#));
+            constraints.push(format!(r#"Concentric(id: "dc{i}", a: "d{i}", b: "c0")"#));
+        }
+        for i in 0..n {
+            entities.push(format!(r#"Point(id: "a{i}")"#));
+            entities.push(format!(r#"Point(id: "b{i}")"#));
+            entities.push(format!(r#"Segment(id: "s{i}", from: "a{i}", to: "b{i}")"#));
+            constraints.push(format!(r#"Incident(id: "a{i}c", a: "a{i}", b: "c{i}")"#));
+            constraints.push(format!(r#"Incident(id: "b{i}c", a: "b{i}", b: "c{i}")"#));
+        }
+        for i in 0..n {
+            entities.push(format!(r#"Point(id: "v{i}")"#));
+            constraints.push(format!(r#"Incident(id: "v{i}s", a: "v{i}", b: "s{i}")"#));
+            constraints.push(format!(r#"Incident(id: "v{i}d", a: "v{i}", b: "d{i}")"#));
+        }
+        format!(
+            "System(dim: 2, entities: [{}], constraints: [{}])",
+            entities.join(", "),
+            constraints.join(", ")
+        )
+    }
+
+    #[test]
+    fn missing_square_roots_are_tossed_again_upstream() {
+        let system = gcs_model::System::from_ron_str(&chords(24), None).unwrap();
         let layout = Layout::new(&system);
         let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
         assert_eq!(witness.source, WitnessSource::Modular);

@@ -272,6 +272,7 @@ fn modular(
                     modular: true,
                     algebra_budget: algebra_budget.clone(),
                     turns: turns.then(|| taken.clone()),
+                    backtrack: false,
                 };
                 let coords = match place::place(system, layout, pref, scale, &opts) {
                     Ok(coords) => coords,
@@ -424,6 +425,7 @@ pub fn find_witness(
             modular: false,
             algebra_budget: std::rc::Rc::new(std::cell::Cell::new(0)),
             turns: None,
+            backtrack: false,
         };
         match place::place(system, layout, &pref_q, scale, &opts) {
             Ok(coords) => match plan(
