@@ -26,7 +26,7 @@
 //! [`Statistics`] counts the maximal rigid subsystem computations, so the saving over file
 //! order can be measured.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use gcs_jacobian::relation_row;
 use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, Signature, System};
@@ -95,7 +95,7 @@ pub struct DecompositionNode {
 }
 
 /// A node over the labels of a (possibly reduced) subsystem.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 struct Node {
     entities: Vec<EntityIdx>,
     labels: Vec<Label>,
@@ -183,7 +183,9 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let mut order: Vec<usize> = (0..sub.groups.len()).collect();
         if self.order == RemovalOrder::FewShortCycles {
             // The entity graph: two entities are adjacent when a group binds both.
-            let index = |e: &EntityIdx| sub.entities.iter().position(|x| x == e);
+            let position: HashMap<EntityIdx, usize> =
+                sub.entities.iter().enumerate().rev().map(|(i, e)| (*e, i)).collect();
+            let index = |e: &EntityIdx| position.get(e).copied();
             let n = sub.entities.len();
             let mut adj: Vec<Vec<usize>> = vec![Vec::new(); n];
             for g in &sub.groups {
@@ -414,6 +416,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         if replacements.is_empty() {
             return None;
         }
+        let internal: HashSet<EntityIdx> = internal.into_iter().collect();
         let mut reduced = Subsystem {
             entities: sub.entities.iter().copied().filter(|e| !internal.contains(e)).collect(),
             groups: Vec::new(),
@@ -430,9 +433,17 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         // (boundaries replaced by their subsystems) and kept when rigid in `sub`.
         let mut root = Self::leaf(sub);
         let mut nodes: Vec<Node> = Vec::new();
-        for child in reduced_tree.children {
-            nodes.extend(self.expand(child, &replacements, sub));
+        // The replacement each boundary relation stands in (the first, as they are unique).
+        let mut of_virtual: HashMap<Label, &Replacement> = HashMap::new();
+        for r in &replacements {
+            for l in &r.virtual_labels {
+                of_virtual.entry(*l).or_insert(r);
+            }
         }
+        for child in reduced_tree.children {
+            nodes.extend(self.expand(child, &of_virtual, sub));
+        }
+
         nodes.extend(subtrees);
         // A node as large as `sub` is `sub` itself: keep its children only.
         let mut flat: Vec<Node> = Vec::new();
@@ -452,32 +463,34 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     fn expand(
         &mut self,
         node: Node,
-        replacements: &[Replacement],
+        of_virtual: &HashMap<Label, &Replacement>,
         sub: &Subsystem<F>,
     ) -> Vec<Node> {
         let mut entities = node.entities.clone();
+        let mut has_entity: HashSet<EntityIdx> = entities.iter().copied().collect();
         let mut labels: Vec<Label> = Vec::new();
+        let mut has_label: HashSet<Label> = HashSet::new();
         for l in &node.labels {
-            if let Some(r) = replacements.iter().find(|r| r.virtual_labels.contains(l)) {
+            if let Some(r) = of_virtual.get(l) {
                 for e in &r.entities {
-                    if !entities.contains(e) {
+                    if has_entity.insert(*e) {
                         entities.push(*e);
                     }
                 }
                 for m in &r.labels {
-                    if !labels.contains(m) {
+                    if has_label.insert(*m) {
                         labels.push(*m);
                     }
                 }
-            } else if !labels.contains(l) {
+            } else if has_label.insert(*l) {
                 labels.push(*l);
             }
         }
         entities.sort_unstable();
         let children: Vec<Node> =
-            node.children.into_iter().flat_map(|c| self.expand(c, replacements, sub)).collect();
+            node.children.into_iter().flat_map(|c| self.expand(c, of_virtual, sub)).collect();
         let groups: Vec<Group<F>> =
-            sub.groups.iter().filter(|g| labels.contains(&g.label)).cloned().collect();
+            sub.groups.iter().filter(|g| has_label.contains(&g.label)).cloned().collect();
         let candidate = Subsystem { entities: entities.clone(), groups };
         self.stats.mrs_computations += 1;
         self.stats.searched_entities += candidate.entities.len();
@@ -593,10 +606,15 @@ impl Degrees {
 }
 
 /// Arranges nodes into a forest by containment of their entity sets; nodes with the same
-/// entities are merged.
+/// entities are merged. The nodes are flattened, merged, and placed largest first (ties in
+/// the order flattened), each under the first node already placed at its level that strictly
+/// contains it, descending while one does — so that each goes under the smallest container
+/// already placed.
+///
+/// Containment is tested on bit sets over the range of the entities, a few words each, and
+/// the forest is built on indices: on a long peeling chain the nodes below are placed again
+/// at every level, and each placement descends the chain.
 fn nest(nodes: Vec<Node>) -> Vec<Node> {
-    // Flatten, merge equal entity sets, then insert largest first, so that each node goes
-    // under the smallest container already placed.
     let mut all: Vec<Node> = Vec::new();
     fn flatten(n: Node, out: &mut Vec<Node>) {
         let Node { entities, labels, children } = n;
@@ -609,9 +627,11 @@ fn nest(nodes: Vec<Node>) -> Vec<Node> {
         flatten(n, &mut all);
     }
     let mut merged: Vec<Node> = Vec::new();
-    let mut by_entities: HashMap<Vec<EntityIdx>, usize> = HashMap::new();
+    // Merged nodes by a fingerprint of their entities (equal sets then compared in full).
+    let mut by_fingerprint: HashMap<u64, Vec<usize>> = HashMap::new();
     for n in all {
-        if let Some(&k) = by_entities.get(&n.entities) {
+        let candidates = by_fingerprint.entry(fingerprint(&n.entities)).or_default();
+        if let Some(&k) = candidates.iter().find(|k| merged[**k].entities == n.entities) {
             let m = &mut merged[k];
             for l in n.labels {
                 if !m.labels.contains(&l) {
@@ -619,32 +639,112 @@ fn nest(nodes: Vec<Node>) -> Vec<Node> {
                 }
             }
         } else {
-            by_entities.insert(n.entities.clone(), merged.len());
+            candidates.push(merged.len());
             merged.push(n);
         }
     }
     merged.sort_by_key(|n| std::cmp::Reverse(n.entities.len()));
-    let mut roots: Vec<Node> = Vec::new();
-    for n in merged {
-        insert(&mut roots, n);
-    }
-    roots
-}
-
-fn insert(forest: &mut Vec<Node>, n: Node) {
-    for parent in forest.iter_mut() {
-        if parent.entities.len() > n.entities.len() && is_subset(&n.entities, &parent.entities) {
-            insert(&mut parent.children, n);
-            return;
+    let sets = BitSets::new(&merged);
+    let contains = |parent: usize, child: usize| {
+        merged[parent].entities.len() > merged[child].entities.len()
+            && sets.is_subset(child, parent)
+    };
+    let mut roots: Vec<usize> = Vec::new();
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); merged.len()];
+    for i in 0..merged.len() {
+        let mut parent: Option<usize> = None;
+        loop {
+            let level = parent.map_or(&roots, |p| &children[p]);
+            match level.iter().copied().find(|&p| contains(p, i)) {
+                Some(p) => parent = Some(p),
+                None => break,
+            }
+        }
+        match parent {
+            Some(p) => children[p].push(i),
+            None => roots.push(i),
         }
     }
-    forest.push(n);
+    fn build(i: usize, merged: &mut [Node], children: &[Vec<usize>]) -> Node {
+        let mut node = std::mem::take(&mut merged[i]);
+        node.children = children[i].iter().map(|&c| build(c, merged, children)).collect();
+        node
+    }
+    roots.iter().map(|&r| build(r, &mut merged, &children)).collect()
 }
 
-/// Whether the ascending `small` is a subset of the ascending `big` (node entities are kept
-/// in file order).
-fn is_subset(small: &[EntityIdx], big: &[EntityIdx]) -> bool {
-    debug_assert!(small.is_sorted() && big.is_sorted());
-    let mut rest = big.iter();
-    small.iter().all(|e| rest.any(|b| b == e))
+/// A hash of a list of entities, cheaper than the standard one on long lists.
+fn fingerprint(entities: &[EntityIdx]) -> u64 {
+    entities.iter().fold(entities.len() as u64, |h, e| {
+        (h.rotate_left(26) ^ u64::from(e.0)).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+    })
+}
+
+/// The entity sets of nodes as bit sets over the range the entities span.
+struct BitSets {
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl BitSets {
+    fn new(nodes: &[Node]) -> BitSets {
+        let entities = || nodes.iter().flat_map(|n| &n.entities).map(|e| e.0);
+        let low = entities().min().unwrap_or(0);
+        let high = entities().max().unwrap_or(0);
+        let words = (high - low) as usize / 64 + 1;
+        let mut bits = vec![0u64; nodes.len() * words];
+        for (set, n) in bits.chunks_exact_mut(words).zip(nodes) {
+            for e in &n.entities {
+                let k = (e.0 - low) as usize;
+                set[k / 64] |= 1 << (k % 64);
+            }
+        }
+        BitSets { words, bits }
+    }
+
+    fn set(&self, i: usize) -> &[u64] {
+        &self.bits[i * self.words..(i + 1) * self.words]
+    }
+
+    /// Whether the entities of node `small` are among those of node `big`.
+    fn is_subset(&self, small: usize, big: usize) -> bool {
+        self.set(small).iter().zip(self.set(big)).all(|(s, b)| s & !b == 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Nesting places each node under the smallest container placed before it and merges
+    /// equal sets, whatever the ranges of the entities.
+    #[test]
+    fn nest_places_nodes_under_their_containers() {
+        let node = |entities: &[u32], labels: &[usize]| Node {
+            entities: entities.iter().map(|e| EntityIdx(*e)).collect(),
+            labels: labels.iter().map(|l| Label::Virtual(*l)).collect(),
+            children: Vec::new(),
+        };
+        let mut outer = node(&[0, 1, 2, 3, 70, 200], &[0]);
+        outer.children = vec![node(&[1, 2, 3], &[1]), node(&[2, 3, 70, 200], &[2])];
+        let forest = nest(vec![
+            outer,
+            node(&[2, 3, 70], &[3]),
+            node(&[1, 2, 3], &[4]),
+            node(&[9, 10], &[5]),
+        ]);
+        let shape = |n: &Node| -> (Vec<u32>, Vec<Label>, usize) {
+            (n.entities.iter().map(|e| e.0).collect(), n.labels.clone(), n.children.len())
+        };
+        assert_eq!(forest.len(), 2);
+        assert_eq!(shape(&forest[0]), (vec![0, 1, 2, 3, 70, 200], vec![Label::Virtual(0)], 2));
+        assert_eq!(shape(&forest[1]), (vec![9, 10], vec![Label::Virtual(5)], 0));
+        let inner = &forest[0].children;
+        assert_eq!(shape(&inner[0]), (vec![2, 3, 70, 200], vec![Label::Virtual(2)], 1));
+        assert_eq!(shape(&inner[0].children[0]), (vec![2, 3, 70], vec![Label::Virtual(3)], 0));
+        assert_eq!(
+            shape(&inner[1]),
+            (vec![1, 2, 3], vec![Label::Virtual(1), Label::Virtual(4)], 0)
+        );
+    }
 }
