@@ -32,7 +32,8 @@ use gcs_jacobian::relation_row;
 use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, Signature, System};
 use gcs_rank::{Echelon, Field};
 
-use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
+use crate::pebble::Game;
+use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, bar_clusters, clusters};
 
 /// Order in which constraints are tried for removal.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -141,7 +142,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
 
     /// The W-decomposition of a rigid subsystem.
     pub(crate) fn decompose(&mut self, sub: &Subsystem<F>) -> DecompositionNode {
-        let node = self.wdec(sub);
+        let node = self.wdec(sub, None);
         self.to_public(node)
     }
 
@@ -262,8 +263,10 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         order
     }
 
-    fn wdec(&mut self, sub: &Subsystem<F>) -> Node {
-        let certificate = self.pebble_certificate(sub);
+    /// The W-decomposition of `sub`, given its certificate when the caller derived it from
+    /// its parent's ([`Decomposer::sub_certificate`]).
+    fn wdec(&mut self, sub: &Subsystem<F>, given: Option<Certificate>) -> Node {
+        let mut certificate = given.or_else(|| self.pebble_certificate(sub));
         if sub.groups.len() <= 1
             || sub.entities.len() <= 1
             || certificate.as_ref().is_some_and(|c| c.leaf)
@@ -289,7 +292,10 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             let removed = without.groups.remove(gi);
             self.stats.mrs_computations += 1;
             self.stats.searched_entities += without.entities.len();
-            let found = clusters(self.ctx, &without);
+            let found = match certificate.as_ref().and_then(|c| c.clusters_without(&without, gi)) {
+                Some(found) => found,
+                None => clusters(self.ctx, &without),
+            };
             let degrees = Degrees::new(&without);
             let nontrivial: Vec<RawCluster> = found
                 .into_iter()
@@ -303,7 +309,8 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 self.stats.fruitless_removals += 1;
                 continue;
             }
-            if let Some(node) = self.split(sub, &without, &removed, nontrivial) {
+            let split = self.split(sub, &without, (gi, &removed), nontrivial, certificate.as_mut());
+            if let Some(node) = split {
                 return node;
             }
             self.stats.fruitless_removals += 1;
@@ -337,7 +344,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         if n < 4 || bars.len() != 2 * n - 3 {
             return None;
         }
-        let mut game = crate::pebble::Game::new(n);
+        let mut game = Game::new(n);
         let mut neighbours = vec![Vec::new(); n];
         for (i, &(u, v)) in bars.iter().enumerate() {
             if !game.add(u, v, i) {
@@ -346,43 +353,137 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             neighbours[u].push(v);
             neighbours[v].push(u);
         }
-        let mut common = vec![true; n];
-        let mut leaf = true;
-        // The part of the current point, marked with its index.
-        let mut mark = vec![usize::MAX; n];
+        let (mut size, mut count) = (vec![n; n], vec![0; n]);
+        let mut mark = vec![u32::MAX; n];
         for (x, around) in neighbours.iter().enumerate() {
-            let (&first, rest) = around.split_first()?;
-            mark[x] = x;
-            mark[first] = x;
-            let mut size = 2;
-            for &y in rest {
-                if size == n {
-                    // (The whole already: the usual case, after one span.)
-                    break;
-                }
-                for v in game.span(first, y)? {
-                    size += usize::from(mark[v] != x);
-                    mark[v] = x;
-                }
-            }
-            if size < n {
-                leaf = false;
-                for (inside, m) in common.iter_mut().zip(&mark) {
-                    *inside &= *m == x;
+            let members = part(&mut game, x, around, &mut mark, x as u32)?;
+            size[x] = members.len();
+            if members.len() < n {
+                for v in members {
+                    count[v] += 1;
                 }
             }
         }
-        Some(Certificate { bars, common, leaf })
+        Some(Certificate::new(bars, game, neighbours, size, count))
+    }
+
+    /// The certificate of `msub` — a cluster `M` of `sub` without one bar, with its bars
+    /// (`in_sub`: their indices in `sub`'s groups) — from `sub`'s certificate `parent`, where
+    /// that is cheaper than [`Decomposer::pebble_certificate`] afresh; `None` otherwise, and
+    /// where `msub` is not such a sub-framework.
+    ///
+    /// Why it is the same certificate: the `2|M| − 3` bars of `msub` are bars of `sub`, which is
+    /// (2,3)-sparse, so `M` is tight in `sub` and spans no other bar of it: `msub` is the
+    /// sub-framework induced on `M`, its game is `sub`'s restricted to it ([`Game::restrict`]),
+    /// and its tight sets are those of `sub` inside `M`. A point `x` of `M` whose neighbours all
+    /// lie in `M` keeps its part `U_x`: the smallest tight sets holding two of its neighbours
+    /// lie in the tight `M`, so they are the same in both; `U_x` is proper in `msub` when it is
+    /// smaller than `M`. Only the parts of the other points — outside `M`, or in it with a
+    /// neighbour outside — are spanned again: in `sub`, to take them out of the counts, and in
+    /// `msub`, to put the new ones in. On a peeling chain that is a few points a level, where
+    /// the certificate afresh spans every point.
+    fn sub_certificate(
+        &self,
+        parent: &mut Certificate,
+        sub: &Subsystem<F>,
+        msub: &Subsystem<F>,
+        in_sub: &[usize],
+    ) -> Option<Certificate> {
+        let n = parent.size.len();
+        let k = msub.entities.len();
+        let bars = crate::rigid::bar_framework(self.ctx, msub)?;
+        if k < 4 || k >= n || bars.len() != 2 * k - 3 || in_sub.len() != bars.len() {
+            return None;
+        }
+        // The new number of each point of `sub` in `msub`, and the old of each point of `msub`.
+        let position: HashMap<EntityIdx, usize> =
+            sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
+        let mut vertex: Vec<Option<usize>> = vec![None; n];
+        let mut old: Vec<usize> = Vec::with_capacity(k);
+        for (y, e) in msub.entities.iter().enumerate() {
+            let x = *position.get(e)?;
+            if vertex[x].replace(y).is_some() {
+                return None;
+            }
+            old.push(x);
+        }
+        // Each bar of `msub` is the bar of `sub` it is said to be.
+        let mut bar: Vec<Option<usize>> = vec![None; parent.bars.len()];
+        for (j, (&(a, b), &g)) in bars.iter().zip(in_sub).enumerate() {
+            if *parent.bars.get(g)? != (old[a], old[b]) || bar[g].replace(j).is_some() {
+                return None;
+            }
+        }
+        // The points whose parts change: outside `M`, or in it with a neighbour outside.
+        let changed: Vec<usize> = (0..n)
+            .filter(|&x| {
+                vertex[x].is_none() || parent.neighbours[x].iter().any(|y| vertex[*y].is_none())
+            })
+            .collect();
+        if 4 * changed.len() > k {
+            return None;
+        }
+        let mut count = parent.count.clone();
+        let mut mark = vec![u32::MAX; n];
+        for (stamp, &x) in changed.iter().enumerate() {
+            if parent.size[x] < n {
+                let members =
+                    part(&mut parent.game, x, &parent.neighbours[x], &mut mark, stamp as u32)?;
+                for v in members {
+                    count[v] = count[v].checked_sub(1)?;
+                }
+            }
+        }
+        let mut again = vec![false; k];
+        for &x in &changed {
+            if let Some(y) = vertex[x] {
+                again[y] = true;
+            }
+        }
+        // The parts kept; those that are the whole of `M` are proper no more.
+        let mut size = vec![k; k];
+        let mut whole = 0;
+        for (y, &x) in old.iter().enumerate() {
+            if !again[y] {
+                if parent.size[x] > k {
+                    return None;
+                }
+                size[y] = parent.size[x];
+                whole += usize::from(size[y] == k);
+            }
+        }
+        let mut count: Vec<usize> =
+            old.iter().map(|&x| count[x].checked_sub(whole)).collect::<Option<_>>()?;
+        let mut game = parent.game.restrict(&vertex, &bar);
+        let mut neighbours = vec![Vec::new(); k];
+        for &(a, b) in &bars {
+            neighbours[a].push(b);
+            neighbours[b].push(a);
+        }
+        let mut mark = vec![u32::MAX; k];
+        for y in (0..k).filter(|&y| again[y]) {
+            let members = part(&mut game, y, &neighbours[y], &mut mark, y as u32)?;
+            size[y] = members.len();
+            if members.len() < k {
+                for v in members {
+                    count[v] += 1;
+                }
+            }
+        }
+        Some(Certificate::new(bars, game, neighbours, size, count))
     }
 
     /// Replaces the non-trivial subsystems by their boundaries, decomposes the reduced system
     /// and the subsystems, and assembles the node of `sub`.
+    /// `removed` is the group removed from `sub` (with its index) to leave `without`;
+    /// `certificate` is `sub`'s, from which those of the subsystems are derived.
     fn split(
         &mut self,
         sub: &Subsystem<F>,
         without: &Subsystem<F>,
-        removed: &Group<F>,
+        (gi, removed): (usize, &Group<F>),
         nontrivial: Vec<RawCluster>,
+        mut certificate: Option<&mut Certificate>,
     ) -> Option<Node> {
         let mut used_groups = vec![false; without.groups.len()];
         let mut internal: Vec<EntityIdx> = Vec::new();
@@ -390,7 +491,8 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let mut subtrees: Vec<Node> = Vec::new();
         let mut boundary_groups: Vec<Group<F>> = Vec::new();
         let degrees = Degrees::new(without);
-        for m in nontrivial {
+        let last = nontrivial.len().saturating_sub(1);
+        for (i, m) in nontrivial.into_iter().enumerate() {
             let groups: Vec<usize> =
                 m.groups.iter().copied().filter(|g| !used_groups[*g]).collect();
             let on_boundary = degrees.boundary(without, removed, &m);
@@ -405,7 +507,17 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 entities: m.entities.clone(),
                 groups: groups.iter().map(|g| without.groups[*g].clone()).collect(),
             };
-            subtrees.push(self.wdec(&msub));
+            let derived = certificate.as_deref_mut().and_then(|c| {
+                let in_sub: Vec<usize> = groups.iter().map(|&g| g + usize::from(g >= gi)).collect();
+                let derived = self.sub_certificate(c, sub, &msub, &in_sub);
+                if i == last {
+                    // `sub`'s game is not asked again: a subsystem is decomposed, so the split
+                    // succeeds and `sub` tries no further removal. (Memory along the chain.)
+                    c.release();
+                }
+                derived
+            });
+            subtrees.push(self.wdec(&msub, derived));
             replacements.push(Replacement {
                 virtual_labels: relations.iter().map(|g| g.label).collect(),
                 entities: m.entities.clone(),
@@ -428,7 +540,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         }
         reduced.groups.extend(boundary_groups);
         reduced.groups.push(removed.clone());
-        let reduced_tree = self.wdec(&reduced);
+        let reduced_tree = self.wdec(&reduced, None);
         // Map the reduced tree back: the root is `sub` itself; its descendants are expanded
         // (boundaries replaced by their subsystems) and kept when rigid in `sub`.
         let mut root = Self::leaf(sub);
@@ -443,7 +555,6 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         for child in reduced_tree.children {
             nodes.extend(self.expand(child, &of_virtual, sub));
         }
-
         nodes.extend(subtrees);
         // A node as large as `sub` is `sub` itself: keep its children only.
         let mut flat: Vec<Node> = Vec::new();
@@ -559,7 +670,8 @@ fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<Signature> {
         .collect()
 }
 
-/// What [`Decomposer::pebble_certificate`] finds.
+/// What [`Decomposer::pebble_certificate`] finds, with what it takes to derive the
+/// certificates of sub-frameworks ([`Decomposer::sub_certificate`]).
 struct Certificate {
     /// The bars, group by group, as positions in the subsystem's entities.
     bars: Vec<(usize, usize)>,
@@ -568,6 +680,85 @@ struct Certificate {
     common: Vec<bool>,
     /// Whether there is no proper part: the subsystem is a leaf.
     leaf: bool,
+    /// The game with every bar accepted.
+    game: Game,
+    /// The neighbours of each point, bar by bar.
+    neighbours: Vec<Vec<usize>>,
+    /// `|U_x|` for each point `x` (a part is proper when smaller than the whole).
+    size: Vec<usize>,
+    /// How many proper parts hold each point.
+    count: Vec<usize>,
+}
+
+impl Certificate {
+    fn new(
+        bars: Vec<(usize, usize)>,
+        game: Game,
+        neighbours: Vec<Vec<usize>>,
+        size: Vec<usize>,
+        count: Vec<usize>,
+    ) -> Certificate {
+        let n = size.len();
+        let proper = size.iter().filter(|s| **s < n).count();
+        let common = count.iter().map(|c| *c == proper).collect();
+        Certificate { bars, common, leaf: proper == 0, game, neighbours, size, count }
+    }
+
+    /// Drops what only derivations need (then [`Decomposer::sub_certificate`] declines).
+    fn release(&mut self) {
+        self.game = Game::new(0);
+        self.neighbours = Vec::new();
+        self.size = Vec::new();
+        self.count = Vec::new();
+    }
+
+    /// The clusters of `without`, the framework without its bar `gi`: the components of the
+    /// certificate's game without that bar, which is the game of `without`
+    /// ([`Game::restrict`]; its bars are independent) — so no game is played afresh.
+    /// `None` once released.
+    fn clusters_without<F>(&self, without: &Subsystem<F>, gi: usize) -> Option<Vec<RawCluster>> {
+        if self.size.is_empty() || gi >= self.bars.len() {
+            return None;
+        }
+        let mut game = self.game.clone();
+        let (u, v) = self.bars[gi];
+        game.remove(u, v);
+        let mut bars = self.bars.clone();
+        bars.remove(gi);
+        let components = game.components(&bars);
+        Some(bar_clusters(without, &bars, &components))
+    }
+}
+
+/// `U_x`, the smallest rigid part holding the point `x` and its neighbours `around`, in a
+/// tight framework's game (see [`Decomposer::pebble_certificate`]): its points, `x` and the
+/// first neighbour first, all of them once it is the whole. `mark` holds a stamp per point,
+/// `stamp` one it does not hold yet. `None` when `x` has no neighbour or the game is not tight.
+fn part(
+    game: &mut Game,
+    x: usize,
+    around: &[usize],
+    mark: &mut [u32],
+    stamp: u32,
+) -> Option<Vec<usize>> {
+    let n = mark.len();
+    let (&first, rest) = around.split_first()?;
+    mark[x] = stamp;
+    mark[first] = stamp;
+    let mut members = vec![x, first];
+    for &y in rest {
+        if members.len() == n {
+            // (The whole already: the usual case, after one span.)
+            break;
+        }
+        for v in game.span(first, y)? {
+            if mark[v] != stamp {
+                mark[v] = stamp;
+                members.push(v);
+            }
+        }
+    }
+    Some(members)
 }
 
 /// How many groups of a subsystem bind each entity: what tells the boundary of a cluster of
@@ -715,6 +906,70 @@ impl BitSets {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::clusters::tests::with_context;
+
+    /// The certificates derived along peeling chains are those computed afresh, and the
+    /// clusters found with the certificate's game without a bar are the cluster search's: on
+    /// random Laman frameworks, for every bar removed from the whole and every cluster of what
+    /// is left, then down a chain of such derivations.
+    #[test]
+    fn derived_certificates_are_the_fresh_ones() {
+        let mut derived = 0;
+        for seed in 1..=10u64 {
+            let system = gcs_model::generate::laman(14 + 2 * seed as usize, seed);
+            derived += with_context(&system, |ctx, whole| {
+                ctx.pebble = true;
+                let d = Decomposer::new(ctx, Vec::new(), RemovalOrder::default());
+                let mut derived = 0;
+                let mut sub = whole.clone();
+                let mut certificate = d.pebble_certificate(&sub).unwrap();
+                for depth in 0.. {
+                    let mut next = None;
+                    for gi in 0..sub.groups.len() {
+                        let mut without = sub.clone();
+                        without.groups.remove(gi);
+                        let found = certificate.clusters_without(&without, gi).unwrap();
+                        assert_eq!(found, clusters(ctx, &without), "seed {seed}, depth {depth}");
+                        for m in found.iter().filter(|m| m.entities.len() < sub.entities.len()) {
+                            let msub = Subsystem {
+                                entities: m.entities.clone(),
+                                groups: m
+                                    .groups
+                                    .iter()
+                                    .map(|g| without.groups[*g].clone())
+                                    .collect(),
+                            };
+                            let in_sub: Vec<usize> =
+                                m.groups.iter().map(|&g| g + usize::from(g >= gi)).collect();
+                            let Some(c) = d.sub_certificate(&mut certificate, &sub, &msub, &in_sub)
+                            else {
+                                continue;
+                            };
+                            let fresh = d.pebble_certificate(&msub).unwrap();
+                            assert_eq!(c.bars, fresh.bars, "seed {seed}, depth {depth}");
+                            assert_eq!(c.size, fresh.size, "seed {seed}, depth {depth}");
+                            assert_eq!(c.count, fresh.count, "seed {seed}, depth {depth}");
+                            assert_eq!(
+                                (c.common.clone(), c.leaf),
+                                (fresh.common, fresh.leaf),
+                                "seed {seed}, depth {depth}"
+                            );
+                            derived += 1;
+                            if next.as_ref().is_none_or(|(s, _): &(Subsystem<_>, _)| {
+                                s.entities.len() < msub.entities.len()
+                            }) {
+                                next = Some((msub, c));
+                            }
+                        }
+                    }
+                    let Some((s, c)) = next else { break };
+                    (sub, certificate) = (s, c);
+                }
+                derived
+            });
+        }
+        assert!(derived > 200, "{derived}");
+    }
 
     /// Nesting places each node under the smallest container placed before it and merges
     /// equal sets, whatever the ranges of the entities.
