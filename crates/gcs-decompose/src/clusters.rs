@@ -190,7 +190,7 @@ fn finish_clusters<F>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use gcs_jacobian::{WitnessOptions, WitnessSource, find_witness};
     use gcs_rank::ModP;
@@ -205,7 +205,7 @@ mod tests {
 
     /// Runs `f` on the cluster search's context for `system` at its default witness (modulo
     /// the prime) and the whole system as a subsystem.
-    fn with_context<R>(
+    pub(crate) fn with_context<R>(
         system: &System,
         f: impl FnOnce(&mut crate::rigid::Context<'_, ModP>, &crate::rigid::Subsystem<ModP>) -> R,
     ) -> R {

@@ -175,6 +175,44 @@ impl Game {
         }
     }
 
+    /// The game on part of the framework, as if played on the kept bars alone: `vertex[v]` is
+    /// the new number of vertex `v` (`None`: dropped; the kept ones numbered without gaps) and
+    /// `bar[b]` the new number of the accepted bar numbered `b` (`None`, or beyond the slice:
+    /// dropped). An accepted bar is kept, in its direction, when it and both its ends are;
+    /// every other one is removed, its pebble back on its tail.
+    ///
+    /// What the game decides depends only on its state being a pebble-game graph (Lee–Streinu,
+    /// §3): the accepted bars are (2,3)-sparse and each vertex's free pebbles and out-bars make
+    /// two. A set `X` then holds `2|X| − span(X) − out(X)` free pebbles, at least three when it
+    /// spans a bar, so gathering four on two vertices fails exactly when a tight set holds
+    /// both, and the vertices reachable from them are then the smallest such set. Any subset of
+    /// sparse bars is sparse and keeps its directions, so the restriction is such a state: it
+    /// answers every question ([`Game::add`], [`Game::span`], the components) as a game played
+    /// afresh on the kept bars would — the decomposition's sub-frameworks reuse their parent's
+    /// game this way. Linear in the vertices and bars.
+    pub fn restrict(&self, vertex: &[Option<usize>], bar: &[Option<usize>]) -> Game {
+        let n = vertex.iter().flatten().map(|v| v + 1).max().unwrap_or(0);
+        let mut game = Game::new(n);
+        for (x, out) in vertex.iter().zip(&self.out) {
+            let Some(x) = *x else { continue };
+            for &(y, b) in out {
+                if let (Some(&Some(y)), Some(&Some(b))) =
+                    (vertex.get(y as usize), bar.get(b as usize))
+                {
+                    game.cover(x, y, b);
+                }
+            }
+        }
+        game
+    }
+
+    /// The maximal rigid components of the accepted bars, as [`pebble_game`] reports them,
+    /// when `bars` are the bars the game was given (all accepted, or the rejected ones too).
+    pub(crate) fn components(&mut self, bars: &[(usize, usize)]) -> Vec<Vec<usize>> {
+        let n = self.pebbles.len();
+        components(self, n, bars)
+    }
+
     /// Whether the accepted bars leave exactly three free pebbles: the framework (on at least
     /// two vertices) is rigid, its bars independent.
     fn tight(&self) -> bool {
@@ -456,5 +494,114 @@ mod tests {
         let mut loose = Game::new(3);
         assert!(loose.add(0, 1, 0) && loose.add(1, 2, 1));
         assert_eq!(loose.span(0, 2), None);
+    }
+
+    /// A random Laman framework's bars, accepted by a game.
+    fn played(n: usize, rng: &mut gcs_model::rng::SplitMix64) -> (Vec<(usize, usize)>, Game) {
+        let bars = gcs_model::generate::laman_edges(n, 0.5, rng);
+        let mut game = Game::new(n);
+        for (i, &(u, v)) in bars.iter().enumerate() {
+            assert!(game.add(u, v, i));
+        }
+        (bars, game)
+    }
+
+    /// A game restricted to some vertices and bars answers as the game played afresh on them:
+    /// the same rank (every kept bar accepted, and a new bar accepted exactly when afresh it
+    /// is) and the same components.
+    #[test]
+    fn a_restricted_game_is_the_game_of_what_is_kept() {
+        let mut rng = gcs_model::rng::SplitMix64::new(7);
+        for case in 0..60 {
+            let n = 4 + rng.below(40) as usize;
+            let (bars, game) = played(n, &mut rng);
+            let keep: Vec<bool> = (0..n).map(|_| rng.below(5) != 0).collect();
+            let mut vertex = vec![None; n];
+            let mut k = 0;
+            for x in (0..n).filter(|x| keep[*x]) {
+                vertex[x] = Some(k);
+                k += 1;
+            }
+            let mut bar = vec![None; bars.len()];
+            let mut kept: Vec<(usize, usize)> = Vec::new();
+            for (i, &(u, v)) in bars.iter().enumerate() {
+                if let (Some(a), Some(b)) = (vertex[u], vertex[v])
+                    && rng.below(6) != 0
+                {
+                    bar[i] = Some(kept.len());
+                    kept.push((a, b));
+                }
+            }
+            let mut restricted = game.restrict(&vertex, &bar);
+            let fresh = pebble_game(k, &kept);
+            assert_eq!(fresh.rank, kept.len(), "case {case}");
+            assert_eq!(restricted.free, 2 * k - kept.len(), "case {case}");
+            assert_eq!(restricted.components(&kept), fresh.components, "case {case}");
+            let mut afresh = Game::new(k);
+            for (i, &(a, b)) in kept.iter().enumerate() {
+                assert!(afresh.add(a, b, i));
+            }
+            for _ in 0..10 {
+                let (a, b) = (rng.below(k as u64) as usize, rng.below(k as u64) as usize);
+                let i = kept.len();
+                assert_eq!(restricted.clone().add(a, b, i), afresh.clone().add(a, b, i));
+            }
+        }
+    }
+
+    /// The W-decomposition's use: a Laman framework's game without one bar has the components
+    /// of the game played afresh without it, and restricted to one of those (a tight
+    /// sub-framework) it spans, for every two points, the set the game afresh spans.
+    #[test]
+    fn a_game_without_a_bar_and_on_a_component_spans_as_afresh() {
+        let mut rng = gcs_model::rng::SplitMix64::new(11);
+        let mut spanned = 0;
+        for case in 0..12 {
+            let n = 6 + rng.below(20) as usize;
+            let (bars, game) = played(n, &mut rng);
+            for (gi, &(u, v)) in bars.iter().enumerate() {
+                let mut without = game.clone();
+                without.remove(u, v);
+                let mut rest = bars.clone();
+                rest.remove(gi);
+                let components = without.components(&rest);
+                assert_eq!(components, pebble_game(n, &rest).components, "case {case}, bar {gi}");
+                for c in components.iter().filter(|c| c.len() >= 3 && c.len() < n) {
+                    let mut vertex = vec![None; n];
+                    for (y, &x) in c.iter().enumerate() {
+                        vertex[x] = Some(y);
+                    }
+                    let mut bar = vec![None; bars.len()];
+                    let mut inside = Vec::new();
+                    for (i, &(a, b)) in bars.iter().enumerate() {
+                        if let (Some(a), Some(b)) = (vertex[a], vertex[b]) {
+                            bar[i] = Some(inside.len());
+                            inside.push((a, b));
+                        }
+                    }
+                    let mut restricted = without.restrict(&vertex, &bar);
+                    let mut afresh = Game::new(c.len());
+                    for (i, &(a, b)) in inside.iter().enumerate() {
+                        assert!(afresh.add(a, b, i));
+                    }
+                    for a in 0..c.len() {
+                        for b in a + 1..c.len() {
+                            let sorted = |s: Option<Vec<usize>>| {
+                                let mut s = s.unwrap();
+                                s.sort_unstable();
+                                s
+                            };
+                            assert_eq!(
+                                sorted(restricted.span(a, b)),
+                                sorted(afresh.span(a, b)),
+                                "case {case}, bar {gi}"
+                            );
+                            spanned += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(spanned > 1000, "{spanned}");
     }
 }

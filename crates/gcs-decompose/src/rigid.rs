@@ -645,23 +645,30 @@ pub(crate) fn clusters<F: Field>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Ve
 fn pebble_clusters<F>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Option<Vec<RawCluster>> {
     let bars = bar_framework(ctx, sub)?;
     let game = crate::pebble_game(sub.entities.len(), &bars);
+    Some(bar_clusters(sub, &bars, &game.components))
+}
+
+/// The clusters of a 2D bar framework (`bars`: [`bar_framework`]) from the pebble game's
+/// maximal rigid components of it, sorted as [`clusters`] sorts them.
+pub(crate) fn bar_clusters<F>(
+    sub: &Subsystem<F>,
+    bars: &[(usize, usize)],
+    components: &[Vec<usize>],
+) -> Vec<RawCluster> {
     // Each bar lies in exactly one component: the one of its first end that holds the other.
     let mut of_vertex: Vec<Vec<usize>> = vec![Vec::new(); sub.entities.len()];
-    for (k, c) in game.components.iter().enumerate() {
+    for (k, c) in components.iter().enumerate() {
         for &v in c {
             of_vertex[v].push(k);
         }
     }
-    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); game.components.len()];
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); components.len()];
     for (g, &(u, v)) in bars.iter().enumerate() {
-        if let Some(&k) =
-            of_vertex[u].iter().find(|k| game.components[**k].binary_search(&v).is_ok())
-        {
+        if let Some(&k) = of_vertex[u].iter().find(|k| components[**k].binary_search(&v).is_ok()) {
             groups[k].push(g);
         }
     }
-    let mut out: Vec<RawCluster> = game
-        .components
+    let mut out: Vec<RawCluster> = components
         .iter()
         .zip(groups)
         .map(|(c, groups)| {
@@ -671,7 +678,7 @@ fn pebble_clusters<F>(ctx: &Context<'_, F>, sub: &Subsystem<F>) -> Option<Vec<Ra
         })
         .collect();
     out.sort_by(|a, b| a.entities.cmp(&b.entities));
-    Some(out)
+    out
 }
 
 /// The bars of a subsystem that is a 2D bar framework (see [`pebble_clusters`]), group by

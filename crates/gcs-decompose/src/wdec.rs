@@ -26,13 +26,14 @@
 //! [`Statistics`] counts the maximal rigid subsystem computations, so the saving over file
 //! order can be measured.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use gcs_jacobian::relation_row;
 use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, Signature, System};
 use gcs_rank::{Echelon, Field};
 
-use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, clusters};
+use crate::pebble::Game;
+use crate::rigid::{Context, Group, Label, RawCluster, Subsystem, bar_clusters, clusters};
 
 /// Order in which constraints are tried for removal.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -95,7 +96,7 @@ pub struct DecompositionNode {
 }
 
 /// A node over the labels of a (possibly reduced) subsystem.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 struct Node {
     entities: Vec<EntityIdx>,
     labels: Vec<Label>,
@@ -141,7 +142,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
 
     /// The W-decomposition of a rigid subsystem.
     pub(crate) fn decompose(&mut self, sub: &Subsystem<F>) -> DecompositionNode {
-        let node = self.wdec(sub);
+        let node = self.wdec(sub, None);
         self.to_public(node)
     }
 
@@ -183,7 +184,9 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let mut order: Vec<usize> = (0..sub.groups.len()).collect();
         if self.order == RemovalOrder::FewShortCycles {
             // The entity graph: two entities are adjacent when a group binds both.
-            let index = |e: &EntityIdx| sub.entities.iter().position(|x| x == e);
+            let position: HashMap<EntityIdx, usize> =
+                sub.entities.iter().enumerate().rev().map(|(i, e)| (*e, i)).collect();
+            let index = |e: &EntityIdx| position.get(e).copied();
             let n = sub.entities.len();
             let mut adj: Vec<Vec<usize>> = vec![Vec::new(); n];
             for g in &sub.groups {
@@ -260,8 +263,10 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         order
     }
 
-    fn wdec(&mut self, sub: &Subsystem<F>) -> Node {
-        let certificate = self.pebble_certificate(sub);
+    /// The W-decomposition of `sub`, given its certificate when the caller derived it from
+    /// its parent's ([`Decomposer::sub_certificate`]).
+    fn wdec(&mut self, sub: &Subsystem<F>, given: Option<Certificate>) -> Node {
+        let mut certificate = given.or_else(|| self.pebble_certificate(sub));
         if sub.groups.len() <= 1
             || sub.entities.len() <= 1
             || certificate.as_ref().is_some_and(|c| c.leaf)
@@ -287,7 +292,10 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             let removed = without.groups.remove(gi);
             self.stats.mrs_computations += 1;
             self.stats.searched_entities += without.entities.len();
-            let found = clusters(self.ctx, &without);
+            let found = match certificate.as_ref().and_then(|c| c.clusters_without(&without, gi)) {
+                Some(found) => found,
+                None => clusters(self.ctx, &without),
+            };
             let degrees = Degrees::new(&without);
             let nontrivial: Vec<RawCluster> = found
                 .into_iter()
@@ -301,7 +309,8 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 self.stats.fruitless_removals += 1;
                 continue;
             }
-            if let Some(node) = self.split(sub, &without, &removed, nontrivial) {
+            let split = self.split(sub, &without, (gi, &removed), nontrivial, certificate.as_mut());
+            if let Some(node) = split {
                 return node;
             }
             self.stats.fruitless_removals += 1;
@@ -335,7 +344,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         if n < 4 || bars.len() != 2 * n - 3 {
             return None;
         }
-        let mut game = crate::pebble::Game::new(n);
+        let mut game = Game::new(n);
         let mut neighbours = vec![Vec::new(); n];
         for (i, &(u, v)) in bars.iter().enumerate() {
             if !game.add(u, v, i) {
@@ -344,43 +353,137 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
             neighbours[u].push(v);
             neighbours[v].push(u);
         }
-        let mut common = vec![true; n];
-        let mut leaf = true;
-        // The part of the current point, marked with its index.
-        let mut mark = vec![usize::MAX; n];
+        let (mut size, mut count) = (vec![n; n], vec![0; n]);
+        let mut mark = vec![u32::MAX; n];
         for (x, around) in neighbours.iter().enumerate() {
-            let (&first, rest) = around.split_first()?;
-            mark[x] = x;
-            mark[first] = x;
-            let mut size = 2;
-            for &y in rest {
-                if size == n {
-                    // (The whole already: the usual case, after one span.)
-                    break;
-                }
-                for v in game.span(first, y)? {
-                    size += usize::from(mark[v] != x);
-                    mark[v] = x;
-                }
-            }
-            if size < n {
-                leaf = false;
-                for (inside, m) in common.iter_mut().zip(&mark) {
-                    *inside &= *m == x;
+            let members = part(&mut game, x, around, &mut mark, x as u32)?;
+            size[x] = members.len();
+            if members.len() < n {
+                for v in members {
+                    count[v] += 1;
                 }
             }
         }
-        Some(Certificate { bars, common, leaf })
+        Some(Certificate::new(bars, game, neighbours, size, count))
+    }
+
+    /// The certificate of `msub` — a cluster `M` of `sub` without one bar, with its bars
+    /// (`in_sub`: their indices in `sub`'s groups) — from `sub`'s certificate `parent`, where
+    /// that is cheaper than [`Decomposer::pebble_certificate`] afresh; `None` otherwise, and
+    /// where `msub` is not such a sub-framework.
+    ///
+    /// Why it is the same certificate: the `2|M| − 3` bars of `msub` are bars of `sub`, which is
+    /// (2,3)-sparse, so `M` is tight in `sub` and spans no other bar of it: `msub` is the
+    /// sub-framework induced on `M`, its game is `sub`'s restricted to it ([`Game::restrict`]),
+    /// and its tight sets are those of `sub` inside `M`. A point `x` of `M` whose neighbours all
+    /// lie in `M` keeps its part `U_x`: the smallest tight sets holding two of its neighbours
+    /// lie in the tight `M`, so they are the same in both; `U_x` is proper in `msub` when it is
+    /// smaller than `M`. Only the parts of the other points — outside `M`, or in it with a
+    /// neighbour outside — are spanned again: in `sub`, to take them out of the counts, and in
+    /// `msub`, to put the new ones in. On a peeling chain that is a few points a level, where
+    /// the certificate afresh spans every point.
+    fn sub_certificate(
+        &self,
+        parent: &mut Certificate,
+        sub: &Subsystem<F>,
+        msub: &Subsystem<F>,
+        in_sub: &[usize],
+    ) -> Option<Certificate> {
+        let n = parent.size.len();
+        let k = msub.entities.len();
+        let bars = crate::rigid::bar_framework(self.ctx, msub)?;
+        if k < 4 || k >= n || bars.len() != 2 * k - 3 || in_sub.len() != bars.len() {
+            return None;
+        }
+        // The new number of each point of `sub` in `msub`, and the old of each point of `msub`.
+        let position: HashMap<EntityIdx, usize> =
+            sub.entities.iter().enumerate().map(|(i, e)| (*e, i)).collect();
+        let mut vertex: Vec<Option<usize>> = vec![None; n];
+        let mut old: Vec<usize> = Vec::with_capacity(k);
+        for (y, e) in msub.entities.iter().enumerate() {
+            let x = *position.get(e)?;
+            if vertex[x].replace(y).is_some() {
+                return None;
+            }
+            old.push(x);
+        }
+        // Each bar of `msub` is the bar of `sub` it is said to be.
+        let mut bar: Vec<Option<usize>> = vec![None; parent.bars.len()];
+        for (j, (&(a, b), &g)) in bars.iter().zip(in_sub).enumerate() {
+            if *parent.bars.get(g)? != (old[a], old[b]) || bar[g].replace(j).is_some() {
+                return None;
+            }
+        }
+        // The points whose parts change: outside `M`, or in it with a neighbour outside.
+        let changed: Vec<usize> = (0..n)
+            .filter(|&x| {
+                vertex[x].is_none() || parent.neighbours[x].iter().any(|y| vertex[*y].is_none())
+            })
+            .collect();
+        if 4 * changed.len() > k {
+            return None;
+        }
+        let mut count = parent.count.clone();
+        let mut mark = vec![u32::MAX; n];
+        for (stamp, &x) in changed.iter().enumerate() {
+            if parent.size[x] < n {
+                let members =
+                    part(&mut parent.game, x, &parent.neighbours[x], &mut mark, stamp as u32)?;
+                for v in members {
+                    count[v] = count[v].checked_sub(1)?;
+                }
+            }
+        }
+        let mut again = vec![false; k];
+        for &x in &changed {
+            if let Some(y) = vertex[x] {
+                again[y] = true;
+            }
+        }
+        // The parts kept; those that are the whole of `M` are proper no more.
+        let mut size = vec![k; k];
+        let mut whole = 0;
+        for (y, &x) in old.iter().enumerate() {
+            if !again[y] {
+                if parent.size[x] > k {
+                    return None;
+                }
+                size[y] = parent.size[x];
+                whole += usize::from(size[y] == k);
+            }
+        }
+        let mut count: Vec<usize> =
+            old.iter().map(|&x| count[x].checked_sub(whole)).collect::<Option<_>>()?;
+        let mut game = parent.game.restrict(&vertex, &bar);
+        let mut neighbours = vec![Vec::new(); k];
+        for &(a, b) in &bars {
+            neighbours[a].push(b);
+            neighbours[b].push(a);
+        }
+        let mut mark = vec![u32::MAX; k];
+        for y in (0..k).filter(|&y| again[y]) {
+            let members = part(&mut game, y, &neighbours[y], &mut mark, y as u32)?;
+            size[y] = members.len();
+            if members.len() < k {
+                for v in members {
+                    count[v] += 1;
+                }
+            }
+        }
+        Some(Certificate::new(bars, game, neighbours, size, count))
     }
 
     /// Replaces the non-trivial subsystems by their boundaries, decomposes the reduced system
     /// and the subsystems, and assembles the node of `sub`.
+    /// `removed` is the group removed from `sub` (with its index) to leave `without`;
+    /// `certificate` is `sub`'s, from which those of the subsystems are derived.
     fn split(
         &mut self,
         sub: &Subsystem<F>,
         without: &Subsystem<F>,
-        removed: &Group<F>,
+        (gi, removed): (usize, &Group<F>),
         nontrivial: Vec<RawCluster>,
+        mut certificate: Option<&mut Certificate>,
     ) -> Option<Node> {
         let mut used_groups = vec![false; without.groups.len()];
         let mut internal: Vec<EntityIdx> = Vec::new();
@@ -388,7 +491,8 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let mut subtrees: Vec<Node> = Vec::new();
         let mut boundary_groups: Vec<Group<F>> = Vec::new();
         let degrees = Degrees::new(without);
-        for m in nontrivial {
+        let last = nontrivial.len().saturating_sub(1);
+        for (i, m) in nontrivial.into_iter().enumerate() {
             let groups: Vec<usize> =
                 m.groups.iter().copied().filter(|g| !used_groups[*g]).collect();
             let on_boundary = degrees.boundary(without, removed, &m);
@@ -403,7 +507,17 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
                 entities: m.entities.clone(),
                 groups: groups.iter().map(|g| without.groups[*g].clone()).collect(),
             };
-            subtrees.push(self.wdec(&msub));
+            let derived = certificate.as_deref_mut().and_then(|c| {
+                let in_sub: Vec<usize> = groups.iter().map(|&g| g + usize::from(g >= gi)).collect();
+                let derived = self.sub_certificate(c, sub, &msub, &in_sub);
+                if i == last {
+                    // `sub`'s game is not asked again: a subsystem is decomposed, so the split
+                    // succeeds and `sub` tries no further removal. (Memory along the chain.)
+                    c.release();
+                }
+                derived
+            });
+            subtrees.push(self.wdec(&msub, derived));
             replacements.push(Replacement {
                 virtual_labels: relations.iter().map(|g| g.label).collect(),
                 entities: m.entities.clone(),
@@ -414,6 +528,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         if replacements.is_empty() {
             return None;
         }
+        let internal: HashSet<EntityIdx> = internal.into_iter().collect();
         let mut reduced = Subsystem {
             entities: sub.entities.iter().copied().filter(|e| !internal.contains(e)).collect(),
             groups: Vec::new(),
@@ -425,13 +540,20 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         }
         reduced.groups.extend(boundary_groups);
         reduced.groups.push(removed.clone());
-        let reduced_tree = self.wdec(&reduced);
+        let reduced_tree = self.wdec(&reduced, None);
         // Map the reduced tree back: the root is `sub` itself; its descendants are expanded
         // (boundaries replaced by their subsystems) and kept when rigid in `sub`.
         let mut root = Self::leaf(sub);
         let mut nodes: Vec<Node> = Vec::new();
+        // The replacement each boundary relation stands in (the first, as they are unique).
+        let mut of_virtual: HashMap<Label, &Replacement> = HashMap::new();
+        for r in &replacements {
+            for l in &r.virtual_labels {
+                of_virtual.entry(*l).or_insert(r);
+            }
+        }
         for child in reduced_tree.children {
-            nodes.extend(self.expand(child, &replacements, sub));
+            nodes.extend(self.expand(child, &of_virtual, sub));
         }
         nodes.extend(subtrees);
         // A node as large as `sub` is `sub` itself: keep its children only.
@@ -452,32 +574,34 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
     fn expand(
         &mut self,
         node: Node,
-        replacements: &[Replacement],
+        of_virtual: &HashMap<Label, &Replacement>,
         sub: &Subsystem<F>,
     ) -> Vec<Node> {
         let mut entities = node.entities.clone();
+        let mut has_entity: HashSet<EntityIdx> = entities.iter().copied().collect();
         let mut labels: Vec<Label> = Vec::new();
+        let mut has_label: HashSet<Label> = HashSet::new();
         for l in &node.labels {
-            if let Some(r) = replacements.iter().find(|r| r.virtual_labels.contains(l)) {
+            if let Some(r) = of_virtual.get(l) {
                 for e in &r.entities {
-                    if !entities.contains(e) {
+                    if has_entity.insert(*e) {
                         entities.push(*e);
                     }
                 }
                 for m in &r.labels {
-                    if !labels.contains(m) {
+                    if has_label.insert(*m) {
                         labels.push(*m);
                     }
                 }
-            } else if !labels.contains(l) {
+            } else if has_label.insert(*l) {
                 labels.push(*l);
             }
         }
         entities.sort_unstable();
         let children: Vec<Node> =
-            node.children.into_iter().flat_map(|c| self.expand(c, replacements, sub)).collect();
+            node.children.into_iter().flat_map(|c| self.expand(c, of_virtual, sub)).collect();
         let groups: Vec<Group<F>> =
-            sub.groups.iter().filter(|g| labels.contains(&g.label)).cloned().collect();
+            sub.groups.iter().filter(|g| has_label.contains(&g.label)).cloned().collect();
         let candidate = Subsystem { entities: entities.clone(), groups };
         self.stats.mrs_computations += 1;
         self.stats.searched_entities += candidate.entities.len();
@@ -546,7 +670,8 @@ fn relations(system: &System, a: EntityIdx, b: EntityIdx) -> Vec<Signature> {
         .collect()
 }
 
-/// What [`Decomposer::pebble_certificate`] finds.
+/// What [`Decomposer::pebble_certificate`] finds, with what it takes to derive the
+/// certificates of sub-frameworks ([`Decomposer::sub_certificate`]).
 struct Certificate {
     /// The bars, group by group, as positions in the subsystem's entities.
     bars: Vec<(usize, usize)>,
@@ -555,6 +680,85 @@ struct Certificate {
     common: Vec<bool>,
     /// Whether there is no proper part: the subsystem is a leaf.
     leaf: bool,
+    /// The game with every bar accepted.
+    game: Game,
+    /// The neighbours of each point, bar by bar.
+    neighbours: Vec<Vec<usize>>,
+    /// `|U_x|` for each point `x` (a part is proper when smaller than the whole).
+    size: Vec<usize>,
+    /// How many proper parts hold each point.
+    count: Vec<usize>,
+}
+
+impl Certificate {
+    fn new(
+        bars: Vec<(usize, usize)>,
+        game: Game,
+        neighbours: Vec<Vec<usize>>,
+        size: Vec<usize>,
+        count: Vec<usize>,
+    ) -> Certificate {
+        let n = size.len();
+        let proper = size.iter().filter(|s| **s < n).count();
+        let common = count.iter().map(|c| *c == proper).collect();
+        Certificate { bars, common, leaf: proper == 0, game, neighbours, size, count }
+    }
+
+    /// Drops what only derivations need (then [`Decomposer::sub_certificate`] declines).
+    fn release(&mut self) {
+        self.game = Game::new(0);
+        self.neighbours = Vec::new();
+        self.size = Vec::new();
+        self.count = Vec::new();
+    }
+
+    /// The clusters of `without`, the framework without its bar `gi`: the components of the
+    /// certificate's game without that bar, which is the game of `without`
+    /// ([`Game::restrict`]; its bars are independent) — so no game is played afresh.
+    /// `None` once released.
+    fn clusters_without<F>(&self, without: &Subsystem<F>, gi: usize) -> Option<Vec<RawCluster>> {
+        if self.size.is_empty() || gi >= self.bars.len() {
+            return None;
+        }
+        let mut game = self.game.clone();
+        let (u, v) = self.bars[gi];
+        game.remove(u, v);
+        let mut bars = self.bars.clone();
+        bars.remove(gi);
+        let components = game.components(&bars);
+        Some(bar_clusters(without, &bars, &components))
+    }
+}
+
+/// `U_x`, the smallest rigid part holding the point `x` and its neighbours `around`, in a
+/// tight framework's game (see [`Decomposer::pebble_certificate`]): its points, `x` and the
+/// first neighbour first, all of them once it is the whole. `mark` holds a stamp per point,
+/// `stamp` one it does not hold yet. `None` when `x` has no neighbour or the game is not tight.
+fn part(
+    game: &mut Game,
+    x: usize,
+    around: &[usize],
+    mark: &mut [u32],
+    stamp: u32,
+) -> Option<Vec<usize>> {
+    let n = mark.len();
+    let (&first, rest) = around.split_first()?;
+    mark[x] = stamp;
+    mark[first] = stamp;
+    let mut members = vec![x, first];
+    for &y in rest {
+        if members.len() == n {
+            // (The whole already: the usual case, after one span.)
+            break;
+        }
+        for v in game.span(first, y)? {
+            if mark[v] != stamp {
+                mark[v] = stamp;
+                members.push(v);
+            }
+        }
+    }
+    Some(members)
 }
 
 /// How many groups of a subsystem bind each entity: what tells the boundary of a cluster of
@@ -593,10 +797,15 @@ impl Degrees {
 }
 
 /// Arranges nodes into a forest by containment of their entity sets; nodes with the same
-/// entities are merged.
+/// entities are merged. The nodes are flattened, merged, and placed largest first (ties in
+/// the order flattened), each under the first node already placed at its level that strictly
+/// contains it, descending while one does — so that each goes under the smallest container
+/// already placed.
+///
+/// Containment is tested on bit sets over the range of the entities, a few words each, and
+/// the forest is built on indices: on a long peeling chain the nodes below are placed again
+/// at every level, and each placement descends the chain.
 fn nest(nodes: Vec<Node>) -> Vec<Node> {
-    // Flatten, merge equal entity sets, then insert largest first, so that each node goes
-    // under the smallest container already placed.
     let mut all: Vec<Node> = Vec::new();
     fn flatten(n: Node, out: &mut Vec<Node>) {
         let Node { entities, labels, children } = n;
@@ -609,9 +818,11 @@ fn nest(nodes: Vec<Node>) -> Vec<Node> {
         flatten(n, &mut all);
     }
     let mut merged: Vec<Node> = Vec::new();
-    let mut by_entities: HashMap<Vec<EntityIdx>, usize> = HashMap::new();
+    // Merged nodes by a fingerprint of their entities (equal sets then compared in full).
+    let mut by_fingerprint: HashMap<u64, Vec<usize>> = HashMap::new();
     for n in all {
-        if let Some(&k) = by_entities.get(&n.entities) {
+        let candidates = by_fingerprint.entry(fingerprint(&n.entities)).or_default();
+        if let Some(&k) = candidates.iter().find(|k| merged[**k].entities == n.entities) {
             let m = &mut merged[k];
             for l in n.labels {
                 if !m.labels.contains(&l) {
@@ -619,32 +830,176 @@ fn nest(nodes: Vec<Node>) -> Vec<Node> {
                 }
             }
         } else {
-            by_entities.insert(n.entities.clone(), merged.len());
+            candidates.push(merged.len());
             merged.push(n);
         }
     }
     merged.sort_by_key(|n| std::cmp::Reverse(n.entities.len()));
-    let mut roots: Vec<Node> = Vec::new();
-    for n in merged {
-        insert(&mut roots, n);
-    }
-    roots
-}
-
-fn insert(forest: &mut Vec<Node>, n: Node) {
-    for parent in forest.iter_mut() {
-        if parent.entities.len() > n.entities.len() && is_subset(&n.entities, &parent.entities) {
-            insert(&mut parent.children, n);
-            return;
+    let sets = BitSets::new(&merged);
+    let contains = |parent: usize, child: usize| {
+        merged[parent].entities.len() > merged[child].entities.len()
+            && sets.is_subset(child, parent)
+    };
+    let mut roots: Vec<usize> = Vec::new();
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); merged.len()];
+    for i in 0..merged.len() {
+        let mut parent: Option<usize> = None;
+        loop {
+            let level = parent.map_or(&roots, |p| &children[p]);
+            match level.iter().copied().find(|&p| contains(p, i)) {
+                Some(p) => parent = Some(p),
+                None => break,
+            }
+        }
+        match parent {
+            Some(p) => children[p].push(i),
+            None => roots.push(i),
         }
     }
-    forest.push(n);
+    fn build(i: usize, merged: &mut [Node], children: &[Vec<usize>]) -> Node {
+        let mut node = std::mem::take(&mut merged[i]);
+        node.children = children[i].iter().map(|&c| build(c, merged, children)).collect();
+        node
+    }
+    roots.iter().map(|&r| build(r, &mut merged, &children)).collect()
 }
 
-/// Whether the ascending `small` is a subset of the ascending `big` (node entities are kept
-/// in file order).
-fn is_subset(small: &[EntityIdx], big: &[EntityIdx]) -> bool {
-    debug_assert!(small.is_sorted() && big.is_sorted());
-    let mut rest = big.iter();
-    small.iter().all(|e| rest.any(|b| b == e))
+/// A hash of a list of entities, cheaper than the standard one on long lists.
+fn fingerprint(entities: &[EntityIdx]) -> u64 {
+    entities.iter().fold(entities.len() as u64, |h, e| {
+        (h.rotate_left(26) ^ u64::from(e.0)).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+    })
+}
+
+/// The entity sets of nodes as bit sets over the range the entities span.
+struct BitSets {
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl BitSets {
+    fn new(nodes: &[Node]) -> BitSets {
+        let entities = || nodes.iter().flat_map(|n| &n.entities).map(|e| e.0);
+        let low = entities().min().unwrap_or(0);
+        let high = entities().max().unwrap_or(0);
+        let words = (high - low) as usize / 64 + 1;
+        let mut bits = vec![0u64; nodes.len() * words];
+        for (set, n) in bits.chunks_exact_mut(words).zip(nodes) {
+            for e in &n.entities {
+                let k = (e.0 - low) as usize;
+                set[k / 64] |= 1 << (k % 64);
+            }
+        }
+        BitSets { words, bits }
+    }
+
+    fn set(&self, i: usize) -> &[u64] {
+        &self.bits[i * self.words..(i + 1) * self.words]
+    }
+
+    /// Whether the entities of node `small` are among those of node `big`.
+    fn is_subset(&self, small: usize, big: usize) -> bool {
+        self.set(small).iter().zip(self.set(big)).all(|(s, b)| s & !b == 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::clusters::tests::with_context;
+
+    /// The certificates derived along peeling chains are those computed afresh, and the
+    /// clusters found with the certificate's game without a bar are the cluster search's: on
+    /// random Laman frameworks, for every bar removed from the whole and every cluster of what
+    /// is left, then down a chain of such derivations.
+    #[test]
+    fn derived_certificates_are_the_fresh_ones() {
+        let mut derived = 0;
+        for seed in 1..=10u64 {
+            let system = gcs_model::generate::laman(14 + 2 * seed as usize, seed);
+            derived += with_context(&system, |ctx, whole| {
+                ctx.pebble = true;
+                let d = Decomposer::new(ctx, Vec::new(), RemovalOrder::default());
+                let mut derived = 0;
+                let mut sub = whole.clone();
+                let mut certificate = d.pebble_certificate(&sub).unwrap();
+                for depth in 0.. {
+                    let mut next = None;
+                    for gi in 0..sub.groups.len() {
+                        let mut without = sub.clone();
+                        without.groups.remove(gi);
+                        let found = certificate.clusters_without(&without, gi).unwrap();
+                        assert_eq!(found, clusters(ctx, &without), "seed {seed}, depth {depth}");
+                        for m in found.iter().filter(|m| m.entities.len() < sub.entities.len()) {
+                            let msub = Subsystem {
+                                entities: m.entities.clone(),
+                                groups: m
+                                    .groups
+                                    .iter()
+                                    .map(|g| without.groups[*g].clone())
+                                    .collect(),
+                            };
+                            let in_sub: Vec<usize> =
+                                m.groups.iter().map(|&g| g + usize::from(g >= gi)).collect();
+                            let Some(c) = d.sub_certificate(&mut certificate, &sub, &msub, &in_sub)
+                            else {
+                                continue;
+                            };
+                            let fresh = d.pebble_certificate(&msub).unwrap();
+                            assert_eq!(c.bars, fresh.bars, "seed {seed}, depth {depth}");
+                            assert_eq!(c.size, fresh.size, "seed {seed}, depth {depth}");
+                            assert_eq!(c.count, fresh.count, "seed {seed}, depth {depth}");
+                            assert_eq!(
+                                (c.common.clone(), c.leaf),
+                                (fresh.common, fresh.leaf),
+                                "seed {seed}, depth {depth}"
+                            );
+                            derived += 1;
+                            if next.as_ref().is_none_or(|(s, _): &(Subsystem<_>, _)| {
+                                s.entities.len() < msub.entities.len()
+                            }) {
+                                next = Some((msub, c));
+                            }
+                        }
+                    }
+                    let Some((s, c)) = next else { break };
+                    (sub, certificate) = (s, c);
+                }
+                derived
+            });
+        }
+        assert!(derived > 200, "{derived}");
+    }
+
+    /// Nesting places each node under the smallest container placed before it and merges
+    /// equal sets, whatever the ranges of the entities.
+    #[test]
+    fn nest_places_nodes_under_their_containers() {
+        let node = |entities: &[u32], labels: &[usize]| Node {
+            entities: entities.iter().map(|e| EntityIdx(*e)).collect(),
+            labels: labels.iter().map(|l| Label::Virtual(*l)).collect(),
+            children: Vec::new(),
+        };
+        let mut outer = node(&[0, 1, 2, 3, 70, 200], &[0]);
+        outer.children = vec![node(&[1, 2, 3], &[1]), node(&[2, 3, 70, 200], &[2])];
+        let forest = nest(vec![
+            outer,
+            node(&[2, 3, 70], &[3]),
+            node(&[1, 2, 3], &[4]),
+            node(&[9, 10], &[5]),
+        ]);
+        let shape = |n: &Node| -> (Vec<u32>, Vec<Label>, usize) {
+            (n.entities.iter().map(|e| e.0).collect(), n.labels.clone(), n.children.len())
+        };
+        assert_eq!(forest.len(), 2);
+        assert_eq!(shape(&forest[0]), (vec![0, 1, 2, 3, 70, 200], vec![Label::Virtual(0)], 2));
+        assert_eq!(shape(&forest[1]), (vec![9, 10], vec![Label::Virtual(5)], 0));
+        let inner = &forest[0].children;
+        assert_eq!(shape(&inner[0]), (vec![2, 3, 70, 200], vec![Label::Virtual(2)], 1));
+        assert_eq!(shape(&inner[0].children[0]), (vec![2, 3, 70], vec![Label::Virtual(3)], 0));
+        assert_eq!(
+            shape(&inner[1]),
+            (vec![1, 2, 3], vec![Label::Virtual(1), Label::Virtual(4)], 0)
+        );
+    }
 }
