@@ -208,11 +208,12 @@ enum Command {
         output: Option<PathBuf>,
     },
     /// Write the solution navigator of one model as a self-contained HTML page: the sketch
-    /// solved and drawn, the solve's plan beside it, each closed-form step's candidates to
-    /// pick (the realization re-assembled and redrawn), autosolve (the drawing's choices) and
-    /// a download of the realization shown as RON. The realizations are computed in advance
-    /// (every combination of the closed-form steps' candidates that keeps the consistent
-    /// redundant constraints; the core as solved from the drawing).
+    /// solved and drawn, the solve's plan beside it as the DR-plan's tree, each node's
+    /// candidates to pick (the core's nodes and the closed-form steps; the realization
+    /// re-assembled and redrawn), autosolve (the drawing's choices) and a download of the
+    /// realization shown as RON. The realizations are computed in advance (every combination
+    /// of the nodes' candidates that keeps the consistent redundant constraints, up to
+    /// --max-solutions).
     Navigate {
         /// The model file (RON, or a CAD file: name the sketch with --sketch when it has
         /// several).

@@ -308,12 +308,13 @@ pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Ve
             .iter()
             .position(|k| k.constraints.iter().any(|x| *x == constraint.id))
             .map_or(LOOSE, |k| PALETTE[k % PALETTE.len()]);
-        let value = constraint.value.as_ref().map(f).unwrap_or(f64::NAN);
+        // (A distance without a value, read off the drawing, says so.)
+        let title = match constraint.value.as_ref().map(f) {
+            Some(value) => format!("{} (Distance {value})", constraint.id),
+            None => format!("{} (Distance, no value)", constraint.id),
+        };
         let ((x1, y1), (x2, y2)) = (at(*a), at(*b));
-        bars = bars.add(
-            segment(x1, y1, x2, y2, colour, 0.5 * line_width)
-                .add(Title::new(format!("{} (Distance {value})", constraint.id))),
-        );
+        bars = bars.add(segment(x1, y1, x2, y2, colour, 0.5 * line_width).add(Title::new(title)));
     }
 
     // Redundant and singular constraints, over the shapes.
