@@ -6,8 +6,13 @@
 #   candidate of the first K3,3 (step 0 of the core's DR-plan, found by homotopy continuation),
 #   the assembly of the two re-solved;
 # and reads the page's state: the realization shown must change, take candidate K at that
-# step, and satisfy every constraint. Needs the release CLI built and chromium. Writes a
-# screenshot of each next to its page.
+# step, and satisfy every constraint. Then, on two K3,3, as a user would: playwright-core
+# (npm, installed into a temporary directory unless PLAYWRIGHT_CORE names one) drives Chromium
+# to click the first K3,3's step and its second candidate's button (tests/navigate_click.mjs);
+# the picture shown must change, and the realization shown, written as RON, must satisfy every
+# constraint by `gcs analyze` itself (not by the residual the page embeds). Needs the release
+# CLI built, chromium, and node with npm for the click. Screenshots go to
+# target/navigate-browser/ (kept after the run: look at them).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 gcs="${GCS_CLI:-$root/target/release/gcs}"
@@ -58,3 +63,32 @@ check "$chain" 2 2 "$k"
 k33="$dir/two_k33.html"
 "$gcs" navigate "$root/data/paper/two_k33.ron" -o "$k33"
 check "$k33" 0 0 1
+
+# The click.
+shots="${CARGO_TARGET_DIR:-$root/target}/navigate-browser"
+mkdir -p "$shots"
+pw="${PLAYWRIGHT_CORE:-}"
+if [ -z "$pw" ]; then
+    npm install --silent --no-audit --no-fund --prefix "$dir/npm" playwright-core@1 >/dev/null
+    pw="$dir/npm/node_modules/playwright-core"
+fi
+PLAYWRIGHT_CORE="$pw" node "$root/tests/navigate_click.mjs" "$k33" 0 1 "$shots/two_k33-click"
+"$gcs" analyze --format json "$shots/two_k33-click.ron" >"$dir/click-analysis.json"
+python3 - "$shots/two_k33-click.json" "$dir/click-analysis.json" <<'PY'
+import json, sys
+shown, analysis = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+before, after = shown["before"], shown["after"]
+problems = []
+if after["state"]["choices"][0] != 1:
+    problems.append(f"the first K3,3 shows candidate {after['state']['choices'][0]}, not 1")
+if after["state"]["realization"] == before["state"]["realization"]:
+    problems.append("the realization did not change")
+if after["svg"] == before["svg"]:
+    problems.append("the picture did not change")
+sketch = analysis.get("sketch") or {}
+if sketch.get("satisfied") is not True:
+    problems.append(f"gcs analyze of the realization shown: {sketch}")
+if problems:
+    sys.exit("navigate browser test (click): " + "; ".join(problems))
+PY
+echo "navigate browser test: two K3,3: a click on candidate 1 of step 0 redraws the sketch, and gcs analyze finds every constraint holding in the realization shown; screenshot $shots/two_k33-click.png"
