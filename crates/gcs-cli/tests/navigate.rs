@@ -88,6 +88,39 @@ fn the_core_nodes_candidates_are_offered() {
     );
 }
 
+/// With the listing cut short (`--max-solutions 1` of the chain's 8), every candidate of every
+/// step that some realization takes is still taken by one of the page (each one solve with
+/// that choice), each satisfying every constraint.
+#[test]
+fn a_truncated_listing_still_offers_every_candidate() {
+    let pairs = |d: &Value| -> std::collections::BTreeSet<(usize, u64)> {
+        let mut out = std::collections::BTreeSet::new();
+        for r in d["realizations"].as_array().unwrap() {
+            for (c, k) in r["choices"].as_array().unwrap().iter().enumerate() {
+                out.insert((c, k.as_u64().unwrap()));
+            }
+        }
+        out
+    };
+    let page = |limit: &str| {
+        let page = temp(&format!("chain_{limit}.html"));
+        let out = page.to_str().unwrap();
+        let args = ["navigate", "data/paper/chain.ron", "--max-solutions", limit, "-o", out];
+        let (code, _, err) = gcs(&args);
+        assert_eq!(code, 0, "{err}");
+        embedded(&std::fs::read_to_string(&page).unwrap())
+    };
+    let (all, cut) = (page("256"), page("1"));
+    assert_eq!((&all["truncated"], &cut["truncated"]), (&Value::from(false), &Value::from(true)));
+    let cut_realizations = cut["realizations"].as_array().unwrap();
+    assert!(cut_realizations.len() > 1, "{}", cut_realizations.len());
+    assert!(cut_realizations.len() < all["realizations"].as_array().unwrap().len());
+    // Steps 1 to 4 are closed-form steps with a choice; one of them has one candidate left.
+    assert_eq!(pairs(&cut), pairs(&all));
+    assert!(pairs(&all).len() >= 8, "{:?}", pairs(&all));
+    assert!(cut_realizations.iter().all(|r| r["max_residual"].as_f64().unwrap() <= 1e-9));
+}
+
 #[test]
 fn a_cad_file_opens_and_a_missing_sketch_is_named() {
     let page = temp("slot.html");

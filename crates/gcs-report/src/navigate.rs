@@ -39,21 +39,41 @@ pub fn navigate_page(
     let options = SolveOptions { all: Some(limit.max(1)), max_paths, ..SolveOptions::default() };
     let solution = gcs_solve::solve(system, &analysis, &options).map_err(ReportError::Solve)?;
     let report = Report::new(system, file, &analysis, None);
-    let realizations: Vec<Vec<f64>> = solution.solutions.clone().unwrap_or_default();
-    // Each realization's choices: the core's nodes', then the closed-form steps'.
     let nodes = solution.plan.iter().take_while(|p| p.method == Method::Newton).count();
-    let node_choices = solution.node_choices.clone().unwrap_or_default();
-    let choices: Vec<Vec<usize>> = (solution.solution_choices.clone().unwrap_or_default())
-        .into_iter()
-        .enumerate()
-        .map(|(i, closed)| {
-            let mut c = node_choices.get(i).cloned().unwrap_or_else(|| vec![0; nodes]);
-            c.extend(closed);
-            c
-        })
-        .collect();
+    let (mut realizations, mut choices) = listed(&solution, nodes);
     // The steps with a choice: each node of an enumerated core, each closed-form step.
     let choosable = |p: &gcs_solve::PlanStep| p.method == Method::ClosedForm || p.paths.is_some();
+    // When the listing stopped at the limit, a candidate no listed realization takes is still
+    // offered: the first realization with it (the others chosen as the solve chooses), one
+    // solve each.
+    if solution.truncated {
+        let mut position = 0;
+        for (k, p) in solution.plan.iter().enumerate() {
+            if !(k < nodes || p.method == Method::ClosedForm) {
+                continue;
+            }
+            let c = position;
+            position += 1;
+            if !choosable(p) {
+                continue;
+            }
+            for j in 0..p.candidates {
+                if choices.iter().any(|r| r.get(c) == Some(&j)) {
+                    continue;
+                }
+                let options =
+                    SolveOptions { all: Some(1), choose: vec![(k, j)], ..options.clone() };
+                let Ok(with) = gcs_solve::solve(system, &analysis, &options) else { continue };
+                let (x, cs) = listed(&with, nodes);
+                if let (Some(x), Some(cs)) = (x.into_iter().next(), cs.into_iter().next())
+                    && cs.get(c) == Some(&j)
+                {
+                    realizations.push(x);
+                    choices.push(cs);
+                }
+            }
+        }
+    }
     let ids = |es: &[gcs_model::EntityIdx]| -> Vec<String> {
         es.iter().map(|e| system.entity(*e).id.clone()).collect()
     };
@@ -126,6 +146,23 @@ pub fn navigate_page(
     // Inside <script>, "</" would end it.
     let data = data.to_string().replace("</", "<\\/");
     Ok(PAGE.replace("{{TITLE}}", &escape(system.name())).replace("{{DATA}}", &data))
+}
+
+/// The realizations a solve lists, with each one's choices: the core's `nodes` nodes', then
+/// the closed-form steps'.
+fn listed(solution: &gcs_solve::Solution, nodes: usize) -> (Vec<Vec<f64>>, Vec<Vec<usize>>) {
+    let realizations: Vec<Vec<f64>> = solution.solutions.clone().unwrap_or_default();
+    let node_choices = solution.node_choices.clone().unwrap_or_default();
+    let choices = (solution.solution_choices.clone().unwrap_or_default())
+        .into_iter()
+        .enumerate()
+        .map(|(i, closed)| {
+            let mut c = node_choices.get(i).cloned().unwrap_or_else(|| vec![0; nodes]);
+            c.extend(closed);
+            c
+        })
+        .collect();
+    (realizations, choices)
 }
 
 /// Text for HTML.
