@@ -306,7 +306,7 @@ pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Ve
         let colour = report
             .clusters
             .iter()
-            .position(|k| k.constraints.iter().any(|x| *x == constraint.id))
+            .position(|k| k.constraints.contains(&constraint.id))
             .map_or(LOOSE, |k| PALETTE[k % PALETTE.len()]);
         // (A distance without a value, read off the drawing, says so.)
         let title = match constraint.value.as_ref().map(f) {
@@ -389,7 +389,7 @@ pub fn analysis_svg_with_motions(system: &System, report: &Report, motions: &[Ve
             })
             .collect();
         let longest = velocities.iter().map(|(_, v)| v[0].hypot(v[1])).fold(0.0, f64::max);
-        if !(longest > 0.0) {
+        if longest.is_nan() || longest <= 0.0 {
             continue;
         }
         let scale = 0.07 * size / longest;
