@@ -121,8 +121,13 @@ pub struct SolveReport {
     pub plan: Vec<PlanReport>,
     /// Closed-form choices reversed by backtracking.
     pub backtracked: usize,
-    /// Whether backtracking hit its bound.
+    /// Whether backtracking hit its bound (over the closed-form steps, or the search over the
+    /// core's combinations).
     pub bound_hit: bool,
+    /// How many combinations of the core nodes' candidates the autosolve's search tried
+    /// (extension; absent when there was no search).
+    #[serde(default, skip_serializing_if = "crate::report::is_zero")]
+    pub combinations: usize,
     /// When the solve failed: the constraint with the largest residual.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub worst: Option<String>,
@@ -290,6 +295,7 @@ impl SolveReport {
             plan,
             backtracked: solution.backtracked,
             bound_hit: solution.bound_hit,
+            combinations: solution.combinations,
             worst: solution.worst.map(id),
             tolerance,
             scale: solution.scale,
@@ -439,10 +445,34 @@ impl SolveReport {
                 },
             ));
         }
+        if self.combinations > 0 {
+            // The core's nodes the search took off their candidate 0 (the drawing's).
+            let moved: Vec<String> = (self.plan.iter().enumerate())
+                .filter(|(_, p)| {
+                    p.method == "newton" && !p.fixed && p.chosen.is_some_and(|c| c > 0)
+                })
+                .map(|(k, p)| format!("step {k} at candidate {}", p.chosen.unwrap_or(0)))
+                .collect();
+            out.push_str(&format!(
+                "  backtracking over the core: {} combination{} of its nodes' candidates tried{}\n",
+                self.combinations,
+                if self.combinations == 1 { "" } else { "s" },
+                if moved.is_empty() {
+                    String::new()
+                } else {
+                    format!(", {} taken (against the drawing's first choice)", moved.join(", "))
+                }
+            ));
+        }
         if self.bound_hit {
             out.push_str(&format!(
-                "  backtracking stopped at its bound after reversing {} choices\n",
-                self.backtracked
+                "  backtracking stopped at its bound after reversing {} choices{}\n",
+                self.backtracked,
+                if self.combinations > 0 {
+                    format!(" and trying {} combinations of the core's nodes", self.combinations)
+                } else {
+                    String::new()
+                }
             ));
         }
         for r in &self.redundant {

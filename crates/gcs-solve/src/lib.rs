@@ -32,8 +32,22 @@
 //! paths — a node with children placing their chosen realizations as rigid bodies — and the
 //! core's realizations are every combination of them.
 //!
+//! Autosolve with backtracking (the ESM paper §3–4): when the solve from the drawing does not
+//! hold (a closed-form step finds no point, a redundant constraint disagrees, an orientation
+//! condition breaks) or turns a triangle of distances against the drawing, the closed-form
+//! steps' sides are searched depth first (the drawing's side first, a placement abandoned as
+//! soon as a triangle it completes turns or a redundant constraint it completes disagrees),
+//! and then the combinations of the core nodes' candidates ([`nodes::Enumerator`]), each
+//! node's ordered by how many wedges of its points turn against the drawing, then by
+//! displacement, depth first — the first combination with which the whole solve holds and
+//! every triangle keeps its turn is taken (else the first with which it holds). The search
+//! is bounded ([`SEARCH_BOUND`] combinations, [`SEARCH_HOMOTOPIES`] homotopies of at most a
+//! quarter of [`SolveOptions::max_paths`] paths each) and says when the bound cut it short
+//! ([`Solution::bound_hit`], [`Solution::combinations`]).
+//!
 //! Not built yet: DR-plans of cores other than point-and-distance frameworks (they are one
-//! node), closed forms for lines and circles, and backtracking over the core's realizations.
+//! node), closed forms for lines and circles, and a search from a core that the solver does not
+//! satisfy from the drawing (its realizations are enumerated from a solved core only).
 //!
 //! A library: it never panics on input and never prints.
 
@@ -165,10 +179,24 @@ pub struct Solution {
     pub no_solution: Vec<NoSolution>,
     /// The steps taken, in order.
     pub plan: Vec<PlanStep>,
-    /// How many closed-form choices backtracking reversed (against the drawing's side).
+    /// How many choices backtracking reversed: closed-form steps placed against the drawing's
+    /// side, and nodes of the core's DR-plan taken off their candidate 0 (the drawing's).
     pub backtracked: usize,
-    /// Whether backtracking stopped at its bound with a step still without a candidate.
+    /// Whether backtracking stopped at its bound with a step still without a candidate, or
+    /// the search over the core's combinations ([`Solution::combinations`]) stopped at
+    /// [`SEARCH_BOUND`] (or at its budget of homotopies) before one held with the drawing's
+    /// chirality.
     pub bound_hit: bool,
+    /// How many combinations of the core nodes' candidates the autosolve's search tried (0:
+    /// no search — the solve from the drawing held, every triangle of distances turning the
+    /// drawing's way). The search runs when the solve does not end solved, or turns a
+    /// triangle against the drawing, and the core's DR-plan is enumerated; it takes the first
+    /// combination, each node's candidates in the order of their agreement with the
+    /// drawing's chirality, with which the whole solve holds and every triangle keeps the
+    /// drawing's turn (else the first with which it holds); the nodes it moved off their
+    /// candidate 0 count in `backtracked`, and their `chosen` in [`Solution::plan`] says
+    /// which.
+    pub combinations: usize,
     /// With [`SolveOptions::all`]: the realizations found, each over the layout's columns like
     /// `x` — the core, and every entity no closed-form step places, as solved (the reference:
     /// realizations are counted up to moving the whole, mirror images distinct), then every combination of the closed-form steps' real
@@ -730,6 +758,18 @@ fn place(
 /// The most closed-form choices backtracking may change before giving up.
 const BACKTRACK_BOUND: usize = 32;
 
+/// The most combinations of the core nodes' candidates the autosolve's search tries
+/// ([`Solution::combinations`]).
+pub const SEARCH_BOUND: usize = 256;
+
+/// The most node homotopies the autosolve's search runs (each of at most a quarter of
+/// [`SolveOptions::max_paths`] paths).
+pub const SEARCH_HOMOTOPIES: usize = 64;
+
+/// The most closed-form placements the autosolve's search over the closed-form steps' sides
+/// visits for one realization of the core.
+const PLACEMENT_BOUND: usize = 1 << 12;
+
 /// The most unknowns of a cluster that the solver, failing to satisfy it from the drawing and
 /// from two other starts, reports as having no real solution.
 const SMALL_CLUSTER: usize = 24;
@@ -893,18 +933,36 @@ pub fn solve(
             .collect();
     let core_turned = core_orientations.iter().any(|o| !orientation_holds(&layout, &x, o));
     let mut backtracked = 0;
-    if (options.all.is_some() || chosen_core || core_turned) && enumerable {
-        let solved = x.clone();
+    // The core's DR-plan at the solved core, to enumerate its nodes' candidates.
+    let solved_core = x.clone();
+    let enumerator = enumerable.then(|| {
         let mut enumerator = nodes::Enumerator::new(
             system,
             &layout,
             &equations,
             &core_nodes,
-            &solved,
+            &solved_core,
             scale,
             options.max_paths,
         );
         enumerator.orientations = core_orientations.clone();
+        enumerator
+    });
+    // Each node's candidates at the choices `picks`, and the chosen ones, into the plan.
+    let record = |plan: &mut Vec<PlanStep>, found: Vec<nodes::Candidates>, picks: &[usize]| {
+        for (step, candidates) in plan.iter_mut().zip(found) {
+            step.candidates = candidates.list.len();
+            step.complete = candidates.complete;
+            step.paths = candidates.counts;
+        }
+        for ((step, forced), pick) in plan.iter_mut().zip(&node_forced).zip(picks) {
+            step.chosen = Some(*pick);
+            step.fixed = forced.is_some();
+        }
+    };
+    if let Some(enumerator) =
+        enumerator.as_ref().filter(|_| options.all.is_some() || chosen_core || core_turned)
+    {
         let mut chosen = enumerator.choose(&node_forced);
         // No node choice of the user's: where the drawing's choices give no realization the
         // orientation conditions allow, the first combination that does (depth first: the
@@ -918,15 +976,7 @@ pub fn solve(
         }
         match chosen {
             Ok((at, found, picks)) => {
-                for (step, candidates) in plan.iter_mut().zip(found) {
-                    step.candidates = candidates.list.len();
-                    step.complete = candidates.complete;
-                    step.paths = candidates.counts;
-                }
-                for ((step, forced), pick) in plan.iter_mut().zip(&node_forced).zip(&picks) {
-                    step.chosen = Some(*pick);
-                    step.fixed = forced.is_some();
-                }
+                record(&mut plan, found, &picks);
                 x = at;
                 cores = vec![(x.clone(), picks)];
             }
@@ -985,14 +1035,12 @@ pub fn solve(
     // ESM paper §4).
     let placed_by: std::collections::HashMap<EntityIdx, usize> =
         construction.steps.iter().enumerate().map(|(k, s)| (s.point, k)).collect();
-    let core_x = x.clone();
+    let mut core_x = x.clone();
     let drawings: Vec<Drawn> = construction
         .steps
         .iter()
         .map(|step| Drawn::of(step, system, &equations, &layout, &x0))
         .collect();
-    let mut flips = vec![false; construction.steps.len()];
-    let mut bound_hit = false;
     // The orientation conditions each closed-form step completes.
     let mut completes: Vec<Vec<&gcs_model::Orientation>> =
         vec![Vec::new(); construction.steps.len()];
@@ -1006,48 +1054,229 @@ pub fn solve(
         let step = &construction.steps[k];
         place(step, &layout, system, &equations, &drawings[k], x, (flip, forced[k]), &completes[k])
     };
-    loop {
-        x.copy_from_slice(&core_x);
-        let mut first_failure = None;
-        let mut confidence = vec![f64::INFINITY; construction.steps.len()];
-        for (k, step) in construction.steps.iter().enumerate() {
-            let placed = place_step(k, &x, flips[k]);
-            let col = layout.columns(step.point).start;
-            (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
-            if placed.candidates == 2 && forced[k].is_none() {
-                confidence[k] = placed.confidence;
-            }
-            if placed.chosen.is_none() && first_failure.is_none() {
-                first_failure = Some(k);
-            }
-        }
-        let Some(failed) = first_failure else { break };
-        // The steps the failed one depends on.
-        let mut ancestors = Vec::new();
-        let mut stack: Vec<usize> = vec![failed];
-        let mut seen = vec![false; construction.steps.len()];
-        while let Some(k) = stack.pop() {
-            for a in &construction.steps[k].anchors {
-                if let Some(&j) = placed_by.get(a)
-                    && !std::mem::replace(&mut seen[j], true)
-                {
-                    ancestors.push(j);
-                    stack.push(j);
+    // Every closed-form step placed after the core at `core`: the configuration, the steps
+    // flipped, whether backtracking hit its bound, and whether every step found a point.
+    let place_all = |core: &[f64]| {
+        let mut x = core.to_vec();
+        let mut flips = vec![false; construction.steps.len()];
+        let mut reversed = 0;
+        let (placed, bound_hit) = loop {
+            x.copy_from_slice(core);
+            let mut first_failure = None;
+            let mut confidence = vec![f64::INFINITY; construction.steps.len()];
+            for (k, step) in construction.steps.iter().enumerate() {
+                let placed = place_step(k, &x, flips[k]);
+                let col = layout.columns(step.point).start;
+                (x[col], x[col + 1]) = (placed.at[0], placed.at[1]);
+                if placed.candidates == 2 && forced[k].is_none() {
+                    confidence[k] = placed.confidence;
+                }
+                if placed.chosen.is_none() && first_failure.is_none() {
+                    first_failure = Some(k);
                 }
             }
+            let Some(failed) = first_failure else { break (true, false) };
+            // The steps the failed one depends on.
+            let mut ancestors = Vec::new();
+            let mut stack: Vec<usize> = vec![failed];
+            let mut seen = vec![false; construction.steps.len()];
+            while let Some(k) = stack.pop() {
+                for a in &construction.steps[k].anchors {
+                    if let Some(&j) = placed_by.get(a)
+                        && !std::mem::replace(&mut seen[j], true)
+                    {
+                        ancestors.push(j);
+                        stack.push(j);
+                    }
+                }
+            }
+            let candidate = ancestors
+                .into_iter()
+                .filter(|&j| !flips[j] && confidence[j].is_finite())
+                .min_by(|&i, &j| confidence[i].total_cmp(&confidence[j]));
+            let Some(j) = candidate else { break (false, false) };
+            if reversed == BACKTRACK_BOUND {
+                break (false, true);
+            }
+            flips[j] = true;
+            reversed += 1;
+        };
+        (x, flips, reversed, bound_hit, placed)
+    };
+    // Each fully redundant constraint measured at `x`.
+    let check = |r: &gcs_analysis::Redundancy, x: &[f64]| {
+        let c = r.constraint;
+        let residual = equations.residual(c, x).map_or(0.0, |res| {
+            res.values.iter().fold(0.0f64, |m, v| if v.abs() > m.abs() { *v } else { m })
+        });
+        // The written precision of every value in the dependency, in the units of this
+        // constraint's residual (first order: a parameter-free residual is quadratic in
+        // lengths, so a length's precision h moves it by about 2·scale·h).
+        let written: f64 = std::iter::once(c)
+            .chain(r.spanning_group.iter().copied())
+            .filter_map(|g| system.constraint(g).value.as_ref())
+            .map(gcs_model::number::written_precision)
+            .sum();
+        let allowance = options.tolerance * 1e3 * unit(system, c, scale)
+            + if system.constraint(c).kind.is_metric() { written } else { 2.0 * scale * written };
+        Checked {
+            constraint: c,
+            residual,
+            allowance,
+            conflicting: residual.abs() > allowance,
+            spanning_group: r.spanning_group.clone(),
         }
-        let candidate = ancestors
-            .into_iter()
-            .filter(|&j| !flips[j] && confidence[j].is_finite())
-            .min_by(|&i, &j| confidence[i].total_cmp(&confidence[j]));
-        let Some(j) = candidate else { break };
-        if backtracked == BACKTRACK_BOUND {
-            bound_hit = true;
-            break;
-        }
-        flips[j] = true;
-        backtracked += 1;
+    };
+    // Whether the whole solve holds at `x` (every step placed, every constraint solved within
+    // the tolerance, every redundant one consistent, every orientation condition kept), and
+    // how many triangles of distances turn against the drawing there.
+    let triangles = distance_triangles(system);
+    let holds = |x: &[f64], placed: bool| {
+        placed
+            && x.iter().all(|v| v.is_finite())
+            && solved.iter().filter(|c| !excluded.contains(c)).all(|&c| {
+                relative(system, &equations, c, x, scale).is_none_or(|m| m <= options.tolerance)
+            })
+            && fully.iter().all(|r| !check(r, x).conflicting)
+            && orientations.iter().all(|o| orientation_holds(&layout, x, o))
+    };
+    let against = |x: &[f64]| triangles_against(&layout, &triangles, &x0, x);
+    // After which closed-form step each triangle and each fully redundant constraint is
+    // complete (0: by the core's).
+    let depth_of = |entities: &[EntityIdx]| {
+        entities.iter().filter_map(|p| placed_by.get(p)).map(|k| k + 1).max().unwrap_or(0)
+    };
+    let mut completed: Vec<(Vec<[EntityIdx; 3]>, Vec<&gcs_analysis::Redundancy>)> =
+        vec![(Vec::new(), Vec::new()); construction.steps.len() + 1];
+    for t in &triangles {
+        completed[depth_of(t)].0.push(*t);
     }
+    for r in &fully {
+        completed[depth_of(&system.constraint_base_entities(r.constraint))].1.push(*r);
+    }
+    // The closed-form steps after the core at `core` such that the whole solve holds and
+    // every triangle keeps the drawing's turn: the drawing's choices with their backtracking
+    // first, else a depth-first search over the steps' candidates (the drawing's side first),
+    // abandoning a placement as soon as a triangle it completes turns against the drawing or
+    // a redundant constraint it completes disagrees, at most `PLACEMENT_BOUND` placements.
+    // The configuration and the steps flipped against the drawing's side.
+    let settle = |core: &[f64]| -> Option<(Vec<f64>, Vec<bool>)> {
+        let (y, flips, _, _, placed) = place_all(core);
+        if holds(&y, placed) && against(&y) == 0 {
+            return Some((y, flips));
+        }
+        let steps = construction.steps.len();
+        let mut y = core.to_vec();
+        let mut flips = vec![false; steps];
+        // Per depth, the next flip to try (0: the drawing's side, 1: the other, 2: done).
+        let mut next = vec![0u8; steps];
+        let mut depth = 0;
+        let mut budget = PLACEMENT_BOUND;
+        let fits = |y: &[f64], d: usize| {
+            triangles_against(&layout, &completed[d].0, &x0, y) == 0
+                && completed[d].1.iter().all(|r| !check(r, y).conflicting)
+        };
+        if !fits(&y, 0) {
+            return None;
+        }
+        loop {
+            if depth == steps {
+                if holds(&y, true) && against(&y) == 0 {
+                    return Some((y, flips));
+                }
+                if depth == 0 {
+                    return None;
+                }
+                depth -= 1;
+                continue;
+            }
+            if next[depth] == 2 || budget == 0 {
+                if depth == 0 || budget == 0 {
+                    return None;
+                }
+                next[depth] = 0;
+                depth -= 1;
+                continue;
+            }
+            budget -= 1;
+            let flip = next[depth] == 1;
+            next[depth] += 1;
+            if flip && forced[depth].is_some() {
+                continue;
+            }
+            let placed = place_step(depth, &y, flip);
+            if flip && placed.candidates < 2 {
+                continue;
+            }
+            if placed.chosen.is_none() {
+                next[depth] = 2;
+                continue;
+            }
+            let col = layout.columns(construction.steps[depth].point).start;
+            (y[col], y[col + 1]) = (placed.at[0], placed.at[1]);
+            if fits(&y, depth + 1) {
+                flips[depth] = flip;
+                depth += 1;
+            }
+        }
+    };
+    let (mut combinations, mut search_cut) = (0, false);
+    let (flips, reversed, bound_hit) = {
+        let (y, mut flips, mut reversed, bound_hit, placed) = place_all(&core_x);
+        let ok = holds(&y, placed);
+        let settled = if ok && against(&y) == 0 { None } else { settle(&core_x) };
+        if let Some((_, f)) = &settled {
+            flips.clone_from(f);
+            reversed = f.iter().filter(|f| **f).count();
+        }
+        let turned = settled.is_none() && against(&y) > 0;
+        let ok = ok || settled.is_some();
+        // The autosolve's search over the core (the ESM paper §3–4): when the solve from the
+        // drawing does not hold, or turns a triangle against the drawing, the combinations of
+        // the core nodes' candidates, each node's in the order of its chirality's agreement
+        // with the drawing, depth first, for the first with which the whole solve holds and
+        // every triangle turns the drawing's way (or else, if the drawing's own does not
+        // hold, the first with which it holds), at most `SEARCH_BOUND` of them.
+        let search = enumerator.as_ref().filter(|_| !ok || turned);
+        let mut best: Option<(Vec<f64>, Vec<usize>, Vec<bool>)> = None;
+        if let Some(enumerator) = search {
+            let mut fallback: Option<(Vec<f64>, Vec<usize>, Vec<bool>)> = None;
+            let bounds = (SEARCH_BOUND, options.max_paths / 4, SEARCH_HOMOTOPIES);
+            let (tried, cut) = enumerator.search(&node_forced, &x0, bounds, &mut |core, picks| {
+                if let Some((_, flips)) = settle(core) {
+                    best = Some((core.to_vec(), picks.clone(), flips));
+                    return true;
+                }
+                let (y, flips, _, _, placed) = place_all(core);
+                if fallback.is_none() && !ok && holds(&y, placed) {
+                    fallback = Some((core.to_vec(), picks.clone(), flips));
+                }
+                false
+            });
+            combinations = tried;
+            search_cut = cut;
+            best = best.or(fallback);
+        }
+        match best.and_then(|(_, picks, flips)| {
+            let picks: Vec<Option<usize>> = picks.into_iter().map(Some).collect();
+            Some((enumerator.as_ref()?.choose(&picks).ok()?, flips))
+        }) {
+            Some(((at, found, picks), flips)) => {
+                record(&mut plan, found, &picks);
+                backtracked += picks.iter().filter(|k| **k != 0).count();
+                core_x = at;
+                x.copy_from_slice(&core_x);
+                if options.all.is_none() {
+                    cores = vec![(x.clone(), picks)];
+                }
+                let reversed = flips.iter().filter(|f| **f).count();
+                (flips, reversed, false)
+            }
+            None => (flips, reversed, bound_hit),
+        }
+    };
+    let bound_hit = bound_hit || search_cut;
+    backtracked += reversed;
     x.copy_from_slice(&core_x);
 
     // A point that has no real place taints the points placed from it: when they fail in
@@ -1116,36 +1345,7 @@ pub fn solve(
     }
     let max_residual = worst.map_or(0.0, |w| w.0);
     let converged = max_residual <= options.tolerance && x.iter().all(|v| v.is_finite());
-    let redundant: Vec<Checked> = fully
-        .iter()
-        .map(|r| {
-            let c = r.constraint;
-            let residual = equations.residual(c, &x).map_or(0.0, |res| {
-                res.values.iter().fold(0.0f64, |m, v| if v.abs() > m.abs() { *v } else { m })
-            });
-            // The written precision of every value in the dependency, in the units of this
-            // constraint's residual (first order: a parameter-free residual is quadratic in
-            // lengths, so a length's precision h moves it by about 2·scale·h).
-            let written: f64 = std::iter::once(c)
-                .chain(r.spanning_group.iter().copied())
-                .filter_map(|g| system.constraint(g).value.as_ref())
-                .map(gcs_model::number::written_precision)
-                .sum();
-            let allowance = options.tolerance * 1e3 * unit(system, c, scale)
-                + if system.constraint(c).kind.is_metric() {
-                    written
-                } else {
-                    2.0 * scale * written
-                };
-            Checked {
-                constraint: c,
-                residual,
-                allowance,
-                conflicting: residual.abs() > allowance,
-                spanning_group: r.spanning_group.clone(),
-            }
-        })
-        .collect();
+    let redundant: Vec<Checked> = fully.iter().map(|r| check(r, &x)).collect();
     // The orientation conditions that do not hold at the solution.
     let turned: Vec<usize> = (orientations.iter().enumerate())
         .filter(|(_, o)| !orientation_holds(&layout, &x, o))
@@ -1242,6 +1442,7 @@ pub fn solve(
         plan,
         backtracked,
         bound_hit,
+        combinations,
         solutions,
         solution_choices,
         truncated,
@@ -1410,6 +1611,58 @@ pub fn orientation_holds(layout: &Layout, x: &[f64], o: &gcs_model::Orientation)
         _ => return false,
     };
     det * f64::from(o.sign) > 1e-12 * size
+}
+
+/// The triangles of a plane system's distances: three points joined pairwise by `Distance`s.
+fn distance_triangles(system: &System) -> Vec<[EntityIdx; 3]> {
+    if system.dim() != gcs_model::Dim::Two {
+        return Vec::new();
+    }
+    let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
+    let mut points: Vec<EntityIdx> = Vec::new();
+    let mut edges = Vec::new();
+    for c in system.constraint_indices() {
+        let constraint = system.constraint(c);
+        if constraint.kind != gcs_model::ConstraintKind::Distance {
+            continue;
+        }
+        let base = system.constraint_base_entities(c);
+        let [p, q] = base.as_slice() else { continue };
+        if [p, q].iter().any(|e| system.entity(**e).kind() != gcs_model::EntityKind::Point) {
+            continue;
+        }
+        let mut id = |e: EntityIdx| {
+            *index.entry(e).or_insert_with(|| {
+                points.push(e);
+                points.len() - 1
+            })
+        };
+        edges.push((id(*p), id(*q)));
+    }
+    (gcs_model::generate::triangles(points.len(), &edges).iter())
+        .map(|t| t.map(|i| points[i]))
+        .collect()
+}
+
+/// How many of `triangles` turn at `x` against their turn in the drawing `x0` (flat at `x`
+/// counts as against; a triangle drawn flat, its sine within 1e-6, counts for none).
+fn triangles_against(
+    layout: &Layout,
+    triangles: &[[EntityIdx; 3]],
+    x0: &[f64],
+    x: &[f64],
+) -> usize {
+    let sine = |y: &[f64], [a, b, c]: [EntityIdx; 3]| {
+        let (a, b, c) = (at(layout, y, a), at(layout, y, b), at(layout, y, c));
+        let n = (b[0] - a[0]).hypot(b[1] - a[1]) * (c[0] - a[0]).hypot(c[1] - a[1]);
+        if n > 0.0 { closed::orientation(a, b, c) / n } else { 0.0 }
+    };
+    (triangles.iter())
+        .filter(|t| {
+            let drawn = sine(x0, **t);
+            drawn.abs() > 1e-6 && sine(x, **t) * drawn <= 0.0
+        })
+        .count()
 }
 
 /// The triangles of distances of a plane system (three points joined pairwise by

@@ -275,6 +275,11 @@ pub(crate) struct Enumerator<'a> {
     /// The orientation conditions on the core's points: a node's candidates are those where
     /// each condition on its points holds.
     pub orientations: Vec<&'a gcs_model::Orientation>,
+    /// For the autosolve's search ([`Enumerator::search`]): the drawing, whose chirality
+    /// orders each node's candidates as they are visited (`None`: in their own order).
+    drawing: std::cell::Cell<Option<&'a [f64]>>,
+    /// The most paths of a node's homotopy during the search (`max_paths` otherwise).
+    path_cap: std::cell::Cell<usize>,
 }
 
 /// A choice a node does not offer: the node, the candidate asked for, why not.
@@ -333,6 +338,8 @@ impl<'a> Enumerator<'a> {
             first,
             wedges,
             orientations: Vec::new(),
+            drawing: std::cell::Cell::new(None),
+            path_cap: std::cell::Cell::new(usize::MAX),
         }
     }
 
@@ -425,7 +432,7 @@ impl<'a> Enumerator<'a> {
                 self.equations,
                 &node.constraints,
                 self.x,
-                self.max_paths,
+                self.max_paths.min(self.path_cap.get()),
                 seed,
             )
             .map(|(counts, list)| (counts, list.into_iter().map(|y| (y.clone(), y)).collect()))
@@ -438,7 +445,7 @@ impl<'a> Enumerator<'a> {
                 &free,
                 &node.constraints,
                 self.x,
-                self.max_paths,
+                self.max_paths.min(self.path_cap.get()),
                 seed,
             )
             .map(|(counts, list)| {
@@ -552,6 +559,84 @@ impl<'a> Enumerator<'a> {
         (out, truncated || self.budget.get() == 0)
     }
 
+    /// The autosolve's search (the ESM paper §3–4): the combinations of the nodes' candidates
+    /// (each node at `forced` where given), depth first — the first child outermost, the
+    /// whole core innermost — each node's candidates in the order of their agreement with the
+    /// chirality of `drawing` (how many wedges of the node's points turn against it, fewest
+    /// first; ties in their own order, by least displacement), until `accept` returns true
+    /// for one (the whole core's configuration and each node's candidate) or `limit` were
+    /// tried. Returns how many were tried and whether the search was cut short (by `limit`
+    /// or by the budget of homotopies, or by a node whose candidates are not all known: not
+    /// enumerated within `max_paths`, or some paths undecided) before it accepted one. Its
+    /// homotopies have at most `max_paths` paths (fewer than the enumeration's: the search
+    /// runs in a plain solve) and it runs at most `homotopies` new ones.
+    pub(crate) fn search(
+        &self,
+        forced: &[Option<usize>],
+        drawing: &'a [f64],
+        (limit, max_paths, homotopies): (usize, usize, usize),
+        accept: &mut dyn FnMut(&[f64], &Choices) -> bool,
+    ) -> (usize, bool) {
+        let Some(root) = self.nodes.len().checked_sub(1) else { return (0, false) };
+        self.drawing.set(Some(drawing));
+        self.path_cap.set(max_paths);
+        let budget = self.budget.get();
+        self.budget.set(budget.min(homotopies));
+        let (mut tried, mut found, mut cut) = (0, false, false);
+        self.visit(root, forced, &mut |x, choices, _| {
+            if tried == limit {
+                cut = true;
+                return false;
+            }
+            tried += 1;
+            found = accept(&x, &choices);
+            !found
+        });
+        self.drawing.set(None);
+        self.path_cap.set(usize::MAX);
+        let spent = budget.min(homotopies) - self.budget.get();
+        let exhausted = self.budget.get() == 0;
+        self.budget.set(budget - spent);
+        // Nodes whose candidates may not be all: the search did not see every combination.
+        let partial = self.known.borrow().values().any(|c| !c.complete);
+        (tried, !found && (cut || exhausted || partial))
+    }
+
+    /// The order in which the search visits node `k`'s candidates with its children at
+    /// `children`: by how many wedges of its points turn against the drawing (a wedge drawn
+    /// flat counts for none), fewest first, ties in their own order; their own order outside
+    /// the search.
+    fn order(&self, k: usize, children: &[&[f64]], candidates: &Candidates) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..candidates.list.len()).collect();
+        let Some(drawing) = self.drawing.get() else { return order };
+        let node = &self.nodes[k];
+        let wedges: Vec<&[EntityIdx; 3]> = (self.wedges.iter())
+            .filter(|w| w.iter().all(|p| node.entities.binary_search(p).is_ok()))
+            .collect();
+        // The sine of a wedge's turn at `y`.
+        let turn = |y: &[f64], w: &[EntityIdx; 3]| {
+            let at = |p: EntityIdx| {
+                let c = self.layout.columns(p).start;
+                [y[c], y[c + 1]]
+            };
+            let (a, b, c) = (at(w[0]), at(w[1]), at(w[2]));
+            let n = (b[0] - a[0]).hypot(b[1] - a[1]) * (c[0] - a[0]).hypot(c[1] - a[1]);
+            let det = crate::closed::orientation(a, b, c);
+            if n > 0.0 { det / n } else { 0.0 }
+        };
+        let drawn: Vec<f64> = wedges.iter().map(|w| turn(drawing, w)).collect();
+        let against: Vec<usize> = (0..candidates.list.len())
+            .map(|j| match self.config(k, children, candidates, j) {
+                Some(y) => (wedges.iter().zip(&drawn))
+                    .filter(|(w, d)| d.abs() > 1e-6 && turn(&y, w) * **d <= 0.0)
+                    .count(),
+                None => usize::MAX,
+            })
+            .collect();
+        order.sort_by_key(|&j| against[j]);
+        order
+    }
+
     /// Calls `emit` with each realization of node `k`'s subtree — configuration, choices (zero
     /// outside the subtree), whether every choice in it is the drawing's — until it returns
     /// false (then returns false).
@@ -577,7 +662,7 @@ impl<'a> Enumerator<'a> {
         let Some(&child) = node.children.get(i) else {
             let children: Vec<&[f64]> = configs.iter().map(Vec::as_slice).collect();
             let candidates = self.known(k, &choices[self.first[k]..k], &children, own);
-            for j in 0..candidates.list.len() {
+            for j in self.order(k, &children, &candidates) {
                 if forced.get(k).copied().flatten().is_some_and(|f| f != j) {
                     continue;
                 }
