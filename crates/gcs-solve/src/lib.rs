@@ -1669,24 +1669,6 @@ fn triangles_against(
 /// `Distance`s) whose orientation at `x` is the drawing's: `(kept, triangles)`.
 pub fn orientation_kept(system: &System, x: &[f64]) -> (usize, usize) {
     let layout = Layout::new(system);
-    let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
-    let mut points: Vec<EntityIdx> = Vec::new();
-    let mut edges = Vec::new();
-    for c in system.constraint_indices() {
-        let constraint = system.constraint(c);
-        if constraint.kind != gcs_model::ConstraintKind::Distance {
-            continue;
-        }
-        let base = system.constraint_base_entities(c);
-        let [p, q] = base.as_slice() else { continue };
-        let mut id = |e: EntityIdx| {
-            *index.entry(e).or_insert_with(|| {
-                points.push(e);
-                points.len() - 1
-            })
-        };
-        edges.push((id(*p), id(*q)));
-    }
     let drawn: Vec<f64> = {
         let mut d = vec![0.0; layout.ncols()];
         for e in system.entity_indices() {
@@ -1698,11 +1680,10 @@ pub fn orientation_kept(system: &System, x: &[f64]) -> (usize, usize) {
         }
         d
     };
-    let triangles = gcs_model::generate::triangles(points.len(), &edges);
+    let triangles = distance_triangles(system);
     let kept = triangles
         .iter()
-        .filter(|t| {
-            let [a, b, c] = t.map(|i| points[i]);
+        .filter(|&&[a, b, c]| {
             let turn = |y: &[f64]| {
                 closed::orientation(at(&layout, y, a), at(&layout, y, b), at(&layout, y, c))
             };
