@@ -56,6 +56,12 @@
 //!   ([`Placer::unplace_from`]), a bounded number of times. A sketch with many such points
 //!   (Onshape's "visual sharp" corners of fillets on arcs) would otherwise need every toss
 //!   to land at once.
+//! - *The order the counts allow* (modulo the prime only, the very last attempt of
+//!   [`place`]: [`counted_order`]): every run starts from an order found backwards, the group
+//!   placed last being one whose constraints towards the rest ask no more than its DOF. An
+//!   offset chain (each copy at the distance the first copy's point decides) or a pattern is
+//!   then placed original first, copies after, where the greedy order placed the copies with
+//!   free choices and asked the first one for every distance at once.
 //! - *Loops as polynomial systems* (modulo the prime only): a failing group is grown by the
 //!   loop from the last free choice to it ([`Placer::chain`]), and a grown group the
 //!   construction cannot place is solved as a polynomial system ([`Placer::place_algebraic`],
@@ -112,6 +118,9 @@ pub(crate) struct PlaceOptions {
     /// Modulo the prime: a construction that lacks a square root takes the free choices
     /// upstream again ([`Placer::unplace_from`]). [`place`] sets it for its last attempt.
     pub(crate) backtrack: bool,
+    /// Every run starts from the order the constraint counts allow ([`counted_order`]), not
+    /// from nothing learnt. [`place`] sets it for its last attempt.
+    pub(crate) counted: bool,
 }
 
 /// The turns a placement took from the drawing ([`PlaceOptions::turns`]).
@@ -535,6 +544,19 @@ pub(crate) fn place(
             return Ok(x);
         }
     }
+    // Modulo the prime, last of all: everything again, each run starting from the order the
+    // constraint counts allow (see [`counted_order`]). (Not over ℚ, where a failure costs a
+    // modular witness only, and the work on big numbers is better spent there.)
+    if first.is_err() && options.modular && !options.counted {
+        let again = PlaceOptions {
+            counted: true,
+            algebra_budget: std::rc::Rc::new(std::cell::Cell::new(2 * ALGEBRA_WORK)),
+            ..options.clone()
+        };
+        if let Ok(x) = place(system, layout, pref, scale, &again) {
+            return Ok(x);
+        }
+    }
     first
 }
 
@@ -809,7 +831,12 @@ fn place_in(
     let mut failed_height = 0;
     let mut rng = SplitMix64::new(options.seed ^ 0x5EED);
     let mut tiebreak: Vec<u64> = (0..nent as u64).collect();
-    let fresh = || Learned { orders_first: fallback, ..Learned::new(system) };
+    let counted = if options.counted {
+        counted_order(system, layout, &bases, &adjacent, &coincident)
+    } else {
+        Vec::new()
+    };
+    let fresh = || Learned { orders_first: fallback, before: counted.clone(), ..Learned::new(system) };
     let mut learned = fresh();
     let (mut epoch, mut run, mut learnt, mut retries) = (0, 0usize, 0, 0);
     let mut failure = None;
@@ -926,6 +953,96 @@ fn place_in(
     });
     failure.no_root = any_no_root;
     Err(failure)
+}
+
+/// An order of placement in which no step is asked more than it can give, by the counts
+/// alone: the pairs `(a, b)` of [`Learned::before`] it implies.
+///
+/// The groups are the coincident points (and every other entity with coordinates alone); a
+/// group's freedom is its entity's DOF. Taken backwards: while groups are left, the group to
+/// place last among them is one whose constraints towards the groups left (each counted by its
+/// DOC) ask no more than its freedom — the most asked first, so that what the constraints
+/// determine is placed from what they are determined by; each such constraint then falls on
+/// that group when it is placed, its other groups placed before it. When no group qualifies,
+/// the one asked least beyond its freedom goes (its step is then decided by the learning, as
+/// without the order). This is the construction a CAD user has in mind for an offset or a
+/// pattern — the original, then the copy at the distance the first copy's point decides —
+/// where the greedy forward order places the copies' points first, each with a free choice,
+/// and the point that sets the distance last, asked as many distances as there are copies.
+fn counted_order(
+    system: &System,
+    layout: &Layout,
+    bases: &[Vec<EntityIdx>],
+    adjacent: &[Vec<ConstraintIdx>],
+    coincident: &[EntityIdx],
+) -> Vec<(EntityIdx, EntityIdx)> {
+    let nent = system.entities().len();
+    let dim = system.dim();
+    let mut freedom = vec![0usize; nent];
+    let mut unit = vec![false; nent];
+    for e in system.entity_indices() {
+        if layout.repr(e).is_some() {
+            let g = coincident[e.index()].index();
+            unit[g] = true;
+            freedom[g] = freedom[g].max(system.entity(e).kind().dof(dim));
+        }
+    }
+    // The exact constraints between groups, with their groups.
+    let mut seen = vec![false; system.constraints().len()];
+    let mut groups_of: Vec<(ConstraintIdx, Vec<usize>)> = Vec::new();
+    for cs in adjacent {
+        for &c in cs {
+            if std::mem::replace(&mut seen[c.index()], true) {
+                continue;
+            }
+            let mut gs: Vec<usize> = bases[c.index()]
+                .iter()
+                .map(|b| coincident[b.index()].index())
+                .filter(|g| unit[*g])
+                .collect();
+            gs.sort_unstable();
+            gs.dedup();
+            let internal = matches!(system.constraint(c).signature, Signature::CoincidentPoints(..));
+            if !gs.is_empty() && !(internal && gs.len() == 1) {
+                groups_of.push((c, gs));
+            }
+        }
+    }
+    let mut of_group: Vec<Vec<usize>> = vec![Vec::new(); nent];
+    let mut asked = vec![0usize; nent];
+    for (k, (c, gs)) in groups_of.iter().enumerate() {
+        for &g in gs {
+            of_group[g].push(k);
+            asked[g] += system.constraint(*c).doc;
+        }
+    }
+    let mut alive = vec![true; groups_of.len()];
+    let mut left: Vec<usize> = (0..nent).filter(|g| unit[*g]).collect();
+    let mut before = Vec::new();
+    while !left.is_empty() {
+        // (Ties: the group last in file order goes last.)
+        let key = |g: usize| {
+            let over = asked[g].saturating_sub(freedom[g]);
+            (Reverse(over), asked[g], g)
+        };
+        let (i, &g) = left.iter().enumerate().max_by_key(|(_, g)| key(**g)).unwrap_or((0, &0));
+        left.swap_remove(i);
+        for &k in &of_group[g] {
+            if !std::mem::replace(&mut alive[k], false) {
+                continue;
+            }
+            let (c, gs) = &groups_of[k];
+            for &h in gs {
+                if h != g {
+                    asked[h] -= system.constraint(*c).doc;
+                    before.push((EntityIdx(h as u32), EntityIdx(g as u32)));
+                }
+            }
+        }
+    }
+    before.sort_unstable();
+    before.dedup();
+    before
 }
 
 /// The drawing in layout coordinates, in floating point (NaN where an entity has none).
@@ -2894,6 +3011,75 @@ mod tests {
     #[test]
     fn missing_square_roots_are_tossed_again_upstream() {
         let system = gcs_model::System::from_ron_str(&chords(24), None).unwrap();
+        let layout = Layout::new(&system);
+        let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
+        assert_eq!(witness.source, WitnessSource::Modular);
+    }
+
+    /// Reduced from an Onshape sketch of SketchGraphs' sample (`00273760…_004`, sketch 1, by
+    /// deleting constraints while the witness search still failed): an offset of a chain of
+    /// four lines, each copy at the distance the first copy's start point has from its line
+    /// (`EqualDistance`, as the reader writes an offset), and two unrelated segments of
+    /// lengths the drawing makes equal only to 1e-9 (so the drawing is no witness). Every
+    /// order before [`super::counted_order`] placed the copies' points first, with free
+    /// choices, and asked the first point for three distances at once; the learning never
+    /// found the order back (checked when this was written: no witness at all).
+    const OFFSET_CHAIN: &str = r#"
+    System(
+        name: "offset",
+        dim: 2,
+        entities: [
+            Point(id: "a.start", at: [-144, 0]),
+            Point(id: "a.end", at: [-144, -39.180714761]),
+            Segment(id: "a", from: "a.start", to: "a.end"),
+            Point(id: "b.start", at: [-144, -41.180714761]),
+            Point(id: "b.end", at: [-144, -80.361429523]),
+            Segment(id: "b", from: "b.start", to: "b.end"),
+            Point(id: "r.start", at: [-70.383384824, 0]),
+            Point(id: "r.end", at: [-70.383384824, -37.109512836]),
+            Segment(id: "r", from: "r.start", to: "r.end"),
+            Point(id: "o3.start", at: [-102.945909214, 80.4]),
+            Point(id: "o3.end", at: [-102.945909214, 50.4]),
+            Segment(id: "o3", from: "o3.start", to: "o3.end"),
+            Point(id: "o2.start", at: [-102.945909214, 50.4]),
+            Point(id: "o2.end", at: [-76.383384824, 50.4]),
+            Segment(id: "o2", from: "o2.start", to: "o2.end"),
+            Point(id: "o1.start", at: [-76.383384824, 50.4]),
+            Point(id: "o1.end", at: [-76.383384824, -41.180714761]),
+            Segment(id: "o1", from: "o1.start", to: "o1.end"),
+            Point(id: "o0.start", at: [-76.383384824, -41.180714761]),
+            Point(id: "o0.end", at: [-70.383384824, -41.180714761]),
+            Segment(id: "o0", from: "o0.start", to: "o0.end"),
+            Point(id: "off.0.start", at: [-78.383384824, -43.180714761]),
+            Point(id: "off.1.start", at: [-78.383384824, 48.4]),
+            Point(id: "off.1.end", at: [-78.383384824, -43.180714761]),
+            Segment(id: "off.1", from: "off.1.start", to: "off.1.end"),
+            Point(id: "off.2.start", at: [-104.945909214, 48.4]),
+            Point(id: "off.2.end", at: [-78.383384824, 48.4]),
+            Segment(id: "off.2", from: "off.2.start", to: "off.2.end"),
+            Point(id: "off.3.start", at: [-104.945909214, 80.4]),
+            Point(id: "off.3.end", at: [-104.945909214, 48.4]),
+            Segment(id: "off.3", from: "off.3.start", to: "off.3.end"),
+        ],
+        constraints: [
+            Coincident(id: "o1.startSnap", a: "o1.start", b: "o2.end"),
+            Parallel(id: "o1.endSnap0", a: "o1", b: "r"),
+            Coincident(id: "off.coi0", a: "off.3.end", b: "off.2.start"),
+            Coincident(id: "off.coi1", a: "off.1.end", b: "off.0.start"),
+            Coincident(id: "off.coi2", a: "off.2.end", b: "off.1.start"),
+            Parallel(id: "off.1.offset#master", a: "o3", b: "off.3"),
+            Parallel(id: "off.1.offset#second", a: "o1", b: "off.1"),
+            EqualDistance(id: "off.1.offset", a: "off.3.start", b: "o3", c: "off.1.start", d: "o1"),
+            Parallel(id: "off.2.offset#second", a: "o2", b: "off.2"),
+            EqualDistance(id: "off.2.offset", a: "off.3.start", b: "o3", c: "off.2.start", d: "o2"),
+            EqualDistance(id: "off.0.offset", a: "off.3.start", b: "o3", c: "off.0.start", d: "o0"),
+            EqualLength(id: "equal", a: "b", b: "a"),
+        ],
+    )"#;
+
+    #[test]
+    fn an_offset_chain_is_placed_in_the_order_its_counts_allow() {
+        let system = gcs_model::System::from_ron_str(OFFSET_CHAIN, None).unwrap();
         let layout = Layout::new(&system);
         let witness = find_witness(&system, &layout, &WitnessOptions::default()).unwrap();
         assert_eq!(witness.source, WitnessSource::Modular);

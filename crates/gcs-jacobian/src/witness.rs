@@ -273,6 +273,7 @@ fn modular(
                     algebra_budget: algebra_budget.clone(),
                     turns: turns.then(|| taken.clone()),
                     backtrack: false,
+                    counted: false,
                 };
                 let coords = match place::place(system, layout, pref, scale, &opts) {
                     Ok(coords) => coords,
@@ -426,6 +427,7 @@ pub fn find_witness(
             algebra_budget: std::rc::Rc::new(std::cell::Cell::new(0)),
             turns: None,
             backtrack: false,
+            counted: false,
         };
         match place::place(system, layout, &pref_q, scale, &opts) {
             Ok(coords) => match plan(
