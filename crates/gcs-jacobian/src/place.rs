@@ -1003,7 +1003,7 @@ fn counted_order(
             gs.sort_unstable();
             gs.dedup();
             let internal = matches!(system.constraint(c).signature, Signature::CoincidentPoints(..));
-            if !gs.is_empty() && !(internal && gs.len() == 1) {
+            if gs.len() > 1 || (gs.len() == 1 && !internal) {
                 groups_of.push((c, gs));
             }
         }
