@@ -203,6 +203,11 @@ struct Plain<F> {
     stored: Vec<Stored<F>>,
     track: bool,
     fill: Vec<usize>,
+    /// The dense form of the row being reduced, for rows whose reduction fills in.
+    dense: Accumulator<F>,
+    switch: Switch,
+    /// How many rows moved to the accumulator.
+    dense_rows: usize,
 }
 
 /// One stored row: `row = inv · (input[id] − Σ m · stored[k].row)` over `multipliers` (kept
@@ -214,6 +219,20 @@ struct Stored<F> {
     multipliers: Vec<(usize, F)>,
 }
 
+/// When the reduction of a row moves from its sorted sparse form to the [`Accumulator`].
+#[derive(Clone, Copy, Debug)]
+enum Switch {
+    /// By the cost model of [`Plain::insert`] (the only policy outside tests).
+    Cost,
+    /// Never: the sparse form throughout.
+    #[cfg(test)]
+    Never,
+    /// Before the given reduction step (0: from the start; steps are counted by the tracked
+    /// multipliers, so only with `track`).
+    #[cfg(test)]
+    AfterSteps(usize),
+}
+
 impl<F: Field> Plain<F> {
     fn new(ncols: usize, rows: &[Vec<(usize, F)>], track: bool) -> Self {
         Plain {
@@ -222,40 +241,115 @@ impl<F: Field> Plain<F> {
             stored: Vec::new(),
             track,
             fill: Vec::new(),
+            dense: Accumulator::default(),
+            switch: Switch::Cost,
+            dense_rows: 0,
         }
     }
 
     /// Reduces input row `id` (entries in columns below the width): `Ok(pivot column)` when it
     /// is independent of the rows before it, `Err(Σ c · stored[k])` — the stored rows it is the
     /// combination of, empty when not tracked — when dependent.
+    ///
+    /// The row is reduced by its leading entry, step by step, first in its sorted sparse form:
+    /// a step merges it with a pivot row, at a cost of about both their lengths. A row that
+    /// fills in (on a connected framework a working row grows to a thousand entries while its
+    /// stored remainder keeps a few dozen) moves to the dense [`Accumulator`], where a step
+    /// costs the pivot row's length alone, and the scans for leading entries plus the final
+    /// gather read about `2 · (width − lead) / 64` words of its bitset. The switch is the ski
+    /// rental rule: merge until the merging done on this row costs as much as moving would
+    /// (the working row's length plus those words), then move; so no row costs more than
+    /// about twice the cheaper of the two forms. The two forms do the same operations on the
+    /// same entries in the same order: the outcome, the stored row and the multipliers do not
+    /// depend on where (or whether) the row switches.
     fn insert(&mut self, id: usize, row: Vec<(usize, F)>) -> Result<usize, Vec<(usize, F)>> {
         let mut entries = self.order.apply(row);
         let mut used: Vec<(usize, F)> = Vec::new();
+        let width = self.pivot_of.len();
+        let mut rent = 0;
         loop {
             let Some((lead, value)) = entries.first().map(|(c, v)| (*c, v.clone())) else {
                 return Err(used);
             };
             let k = self.pivot_of[lead];
-            if k != NONE {
-                self.fill.clear();
-                let pivot_row = &self.stored[k].row;
-                sub_scaled(&mut entries, &value, pivot_row, Some(lead), |_| false, &mut self.fill);
-                if self.track {
-                    used.push((k, value));
-                }
-                continue;
+            if k == NONE {
+                return self.store(id, lead, entries, value, used);
             }
-            let Some(inv) = value.inv() else {
-                // Unreachable for a field: a nonzero entry has an inverse.
-                return Err(used);
+            let dense = match self.switch {
+                Switch::Cost => rent >= entries.len() + 2 * (width - lead) / 64,
+                #[cfg(test)]
+                Switch::Never => false,
+                #[cfg(test)]
+                Switch::AfterSteps(n) => used.len() >= n,
             };
-            for (_, v) in &mut entries {
-                *v = v.mul(&inv);
+            if dense {
+                return self.insert_dense(id, entries, used);
             }
-            self.pivot_of[lead] = self.stored.len();
-            self.stored.push(Stored { row: entries, id, inv, multipliers: used });
-            return Ok(self.order.column(lead));
+            let pivot_row = &self.stored[k].row;
+            rent += entries.len() + pivot_row.len();
+            self.fill.clear();
+            sub_scaled(&mut entries, &value, pivot_row, Some(lead), |_| false, &mut self.fill);
+            if self.track {
+                used.push((k, value));
+            }
         }
+    }
+
+    /// [`Plain::insert`] continued in the dense accumulator, from the working row `entries`
+    /// (sorted, nonzero, not empty) and the stored rows `used` so far.
+    fn insert_dense(
+        &mut self,
+        id: usize,
+        entries: Vec<(usize, F)>,
+        mut used: Vec<(usize, F)>,
+    ) -> Result<usize, Vec<(usize, F)>> {
+        self.dense_rows += 1;
+        let acc = &mut self.dense;
+        acc.fit(self.pivot_of.len());
+        let mut from = entries.first().map_or(0, |e| e.0);
+        for (c, v) in entries {
+            acc.set(c, v);
+        }
+        while let Some(lead) = acc.next(from) {
+            from = lead;
+            let value = acc.take(lead);
+            let k = self.pivot_of[lead];
+            if k == NONE {
+                let mut entries = vec![(lead, value.clone())];
+                acc.drain(lead + 1, &mut entries);
+                return self.store(id, lead, entries, value, used);
+            }
+            // The pivot row leads with its pivot column, which `take` has already cleared.
+            for (j, s) in self.stored[k].row.iter().skip(1) {
+                acc.sub_mul(*j, &value, s);
+            }
+            if self.track {
+                used.push((k, value));
+            }
+        }
+        Err(used)
+    }
+
+    /// Stores the remainder `entries` (leading `value` at position `lead`, no pivot there yet)
+    /// scaled to a leading 1, with its multipliers: `Ok(its pivot column)`.
+    fn store(
+        &mut self,
+        id: usize,
+        lead: usize,
+        mut entries: Vec<(usize, F)>,
+        value: F,
+        used: Vec<(usize, F)>,
+    ) -> Result<usize, Vec<(usize, F)>> {
+        let Some(inv) = value.inv() else {
+            // Unreachable for a field: a nonzero entry has an inverse.
+            return Err(used);
+        };
+        for (_, v) in &mut entries {
+            *v = v.mul(&inv);
+        }
+        self.pivot_of[lead] = self.stored.len();
+        self.stored.push(Stored { row: entries, id, inv, multipliers: used });
+        Ok(self.order.column(lead))
     }
 
     /// `Σ c · stored[k].row` over `used`, as a combination of input rows (sorted by id, zeros
@@ -365,10 +459,92 @@ impl Order {
     }
 }
 
+/// A dense working row: `values` over the whole width and a bitset of the positions that may
+/// be nonzero, so that leading entries are found word by word and clearing touches only those
+/// positions. Empty until a row first needs it; all zero between rows.
+struct Accumulator<F> {
+    values: Vec<F>,
+    bits: Vec<u64>,
+}
+
+impl<F> Default for Accumulator<F> {
+    fn default() -> Self {
+        Accumulator { values: Vec::new(), bits: Vec::new() }
+    }
+}
+
+impl<F: Field> Accumulator<F> {
+    /// Grows to `width` positions.
+    fn fit(&mut self, width: usize) {
+        if self.values.len() < width {
+            self.values.resize(width, F::zero());
+            self.bits.resize(width.div_ceil(64), 0);
+        }
+    }
+
+    fn mark(&mut self, c: usize) {
+        self.bits[c / 64] |= 1 << (c % 64);
+    }
+
+    /// Position `c` (zero before) set to `v`.
+    fn set(&mut self, c: usize, v: F) {
+        self.values[c] = v;
+        self.mark(c);
+    }
+
+    /// `values[c] −= a · b`.
+    fn sub_mul(&mut self, c: usize, a: &F, b: &F) {
+        self.values[c].sub_mul_assign(a, b);
+        self.mark(c);
+    }
+
+    /// The value at `c`, leaving zero there.
+    fn take(&mut self, c: usize) -> F {
+        self.bits[c / 64] &= !(1 << (c % 64));
+        std::mem::replace(&mut self.values[c], F::zero())
+    }
+
+    /// The first position at or after `from` with a nonzero value; the marks of the zeros
+    /// passed on the way are cleared.
+    fn next(&mut self, from: usize) -> Option<usize> {
+        let mut w = from / 64;
+        let mut word = self.bits.get(w)? & (!0 << (from % 64));
+        loop {
+            while word != 0 {
+                let c = w * 64 + word.trailing_zeros() as usize;
+                if !self.values[c].is_zero() {
+                    return Some(c);
+                }
+                word &= word - 1;
+                self.bits[w] &= !(1 << (c % 64));
+            }
+            w += 1;
+            word = *self.bits.get(w)?;
+        }
+    }
+
+    /// Appends the nonzero entries to `out`, in order, and clears every position. All marks are
+    /// at or after `from` (the reduction has cleared the positions it passed), so the words
+    /// before its word are not read.
+    fn drain(&mut self, from: usize, out: &mut Vec<(usize, F)>) {
+        for w in from / 64..self.bits.len() {
+            let mut word = std::mem::take(&mut self.bits[w]);
+            while word != 0 {
+                let c = w * 64 + word.trailing_zeros() as usize;
+                word &= word - 1;
+                let v = std::mem::replace(&mut self.values[c], F::zero());
+                if !v.is_zero() {
+                    out.push((c, v));
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Echelon, EchelonOptions, ModP};
+    use crate::{Echelon, EchelonOptions, ModP, Rat};
 
     fn row(entries: &[(usize, u64)]) -> SparseRow<ModP> {
         SparseRow::from_entries(entries.iter().map(|(c, v)| (*c, ModP::new(*v))).collect())
@@ -481,5 +657,123 @@ mod tests {
             }
             assert!(plain.outcomes.iter().any(|o| !o.is_independent()));
         }
+    }
+
+    /// Everything a `Plain` elimination leaves behind, row by row: the outcome (a pivot column,
+    /// or the expanded combination of a dependent row) and the stored rows with their inverses
+    /// and multipliers.
+    type Trace<F> =
+        (Vec<Result<usize, Vec<(usize, F)>>>, Vec<(Vec<(usize, F)>, usize, F, Vec<(usize, F)>)>);
+
+    fn eliminate<F: Field>(
+        ncols: usize,
+        rows: &[Vec<(usize, F)>],
+        switch: Switch,
+    ) -> (Trace<F>, usize) {
+        let mut lu = Plain::new(ncols, rows, true);
+        lu.switch = switch;
+        let outcomes = rows
+            .iter()
+            .enumerate()
+            .map(|(id, r)| lu.insert(id, r.clone()).map_err(|used| lu.expand(used)))
+            .collect();
+        let stored = lu
+            .stored
+            .iter()
+            .map(|s| (s.row.clone(), s.id, s.inv.clone(), s.multipliers.clone()))
+            .collect();
+        ((outcomes, stored), lu.dense_rows)
+    }
+
+    /// Random sparse rows over `ncols` columns, a third of them combinations of up to four
+    /// earlier rows (planted dependencies), a few reaching across the whole width.
+    fn planted(ncols: usize, nrows: usize, seed: u64) -> Vec<Vec<(usize, ModP)>> {
+        let mut state = seed;
+        let mut next = move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state >> 33
+        };
+        let mut rows: Vec<SparseRow<ModP>> = Vec::new();
+        for i in 0..nrows {
+            let r = if i > 3 && next() % 3 == 0 {
+                let picks = (0..1 + next() % 4)
+                    .map(|_| (next() as usize % rows.len(), ModP::new(1 + next() % 1000)))
+                    .collect();
+                SparseRow::from_entries(picks).combine_rows(&rows)
+            } else {
+                let count = if next() % 10 == 0 { ncols / 2 } else { 2 + next() as usize % 4 };
+                let entries = (0..count)
+                    .map(|_| (next() as usize % ncols, ModP::new(1 + next() % 1_000_000)))
+                    .collect();
+                SparseRow::from_entries(entries)
+            };
+            rows.push(r);
+        }
+        rows.into_iter().map(SparseRow::into_entries).collect()
+    }
+
+    #[test]
+    fn the_dense_accumulator_changes_nothing() {
+        // The same outcomes, pivot columns, combinations, stored rows and multipliers whether
+        // rows switch to the dense form never, from the start, mid-way or by the cost model;
+        // widths of one to four bitset words, and under the order's threshold.
+        for (trial, (ncols, nrows)) in
+            [(20, 40), (64, 100), (65, 130), (150, 260), (250, 300)].into_iter().enumerate()
+        {
+            let rows = planted(ncols, nrows, 1000 + trial as u64);
+            let (sparse, none) = eliminate(ncols, &rows, Switch::Never);
+            assert_eq!(none, 0);
+            assert!(sparse.0.iter().any(Result::is_err), "trial {trial}: no dependency");
+            for switch in
+                [Switch::AfterSteps(0), Switch::AfterSteps(1), Switch::AfterSteps(3), Switch::Cost]
+            {
+                let (dense, moved) = eliminate(ncols, &rows, switch);
+                assert_eq!(dense.0, sparse.0, "trial {trial}, {switch:?}: outcomes");
+                assert_eq!(dense.1, sparse.1, "trial {trial}, {switch:?}: stored rows");
+                if !matches!(switch, Switch::Cost) {
+                    assert!(moved > 0, "trial {trial}, {switch:?}: nothing switched");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_dense_accumulator_serves_rationals_too() {
+        // The accumulator is generic: exact rationals, switched mid-way, give the outcomes and
+        // stored rows of the sparse form.
+        let rows: Vec<Vec<(usize, Rat)>> = planted(70, 90, 77)
+            .into_iter()
+            .map(|r| {
+                r.into_iter()
+                    .map(|(c, v)| (c, Rat::from_i64(v.value() as i64 % 97 - 48)))
+                    .filter(|(_, v)| !v.is_zero())
+                    .collect()
+            })
+            .collect();
+        let (sparse, _) = eliminate(70, &rows, Switch::Never);
+        let (dense, moved) = eliminate(70, &rows, Switch::AfterSteps(2));
+        assert!(moved > 0);
+        assert_eq!(dense, sparse);
+    }
+
+    #[test]
+    fn the_cost_model_switches_rows_that_fill_in() {
+        // A path of 2,000 columns, rows x_i − x_{i+1}: short rows, short reductions, no switch.
+        let n = 2000;
+        let mut rows: Vec<Vec<(usize, ModP)>> =
+            (0..n - 1).map(|i| vec![(i, ModP::one()), (i + 1, ModP::one().neg())]).collect();
+        let (_, moved) = eliminate(n, &rows, Switch::Cost);
+        assert_eq!(moved, 0);
+        // A row over every column, then its dependent twin: merging them with the path rows
+        // costs their whole length at every step, and they switch.
+        let full: Vec<(usize, ModP)> = (0..n).map(|c| (c, ModP::new(c as u64 + 1))).collect();
+        rows.push(full.clone());
+        rows.push(full.into_iter().map(|(c, v)| (c, v.mul(&ModP::new(3)))).collect());
+        let (sparse, _) = eliminate(n, &rows, Switch::Never);
+        let (cost, moved) = eliminate(n, &rows, Switch::Cost);
+        assert_eq!(moved, 2);
+        assert_eq!(cost, sparse);
+        assert!(cost.0[n - 1].is_ok());
+        assert_eq!(cost.0[n], Err(vec![(n - 1, ModP::new(3))]));
     }
 }
