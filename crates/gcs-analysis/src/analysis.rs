@@ -14,8 +14,7 @@ use gcs_rank::{
 
 use gcs_decompose::{
     Cluster, ClusterMethod, ClusterOptions, Decomposition, DecompositionNode, GroupRigidity,
-    PebbleReport,
-    RemovalOrder, Statistics, pebble_game,
+    PebbleReport, RemovalOrder, Statistics, pebble_game,
 };
 
 use crate::error::AnalysisError;

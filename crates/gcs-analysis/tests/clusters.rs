@@ -502,9 +502,8 @@ fn nested(node: &DecompositionNode) -> bool {
 #[test]
 fn a_declared_rigid_group_is_a_node_of_the_decomposition() {
     let chain = gcs_model::generate::k33_chain(3, 1);
-    let ids = |range: std::ops::Range<usize>| -> Vec<String> {
-        range.map(|i| format!("p{i}")).collect()
-    };
+    let ids =
+        |range: std::ops::Range<usize>| -> Vec<String> { range.map(|i| format!("p{i}")).collect() };
     let set = |v: &[String]| -> BTreeSet<String> { v.iter().cloned().collect() };
     let plain = run(&chain, true);
     let [tree] = plain.decomposition.as_deref().unwrap() else { panic!("one cluster") };

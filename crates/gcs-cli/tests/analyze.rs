@@ -658,7 +658,9 @@ fn decompose_makes_a_rigid_group_a_node() {
     let (_, text, _) = gcs(&["analyze", "--decompose", path]);
     assert!(text.contains("(group AB)"), "{text}");
     assert!(
-        text.contains("group loose is not rigid on its own constraints (2 rigid parts): not a node"),
+        text.contains(
+            "group loose is not rigid on its own constraints (2 rigid parts): not a node"
+        ),
         "{text}"
     );
     // Without --decompose, nothing of the groups.

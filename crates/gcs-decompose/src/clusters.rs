@@ -193,7 +193,8 @@ fn incorporate<F: Field>(
             .cloned()
             .collect();
         let gsub = crate::rigid::Subsystem { entities: entities.clone(), groups };
-        let parts = if entities.is_empty() { 0 } else { crate::rigid::clusters(d.ctx, &gsub).len() };
+        let parts =
+            if entities.is_empty() { 0 } else { crate::rigid::clusters(d.ctx, &gsub).len() };
         verdicts.push(GroupRigidity { group: k, parts });
         if parts != 1 {
             continue;

@@ -113,10 +113,14 @@ impl IncompleteReport {
         match why {
             Shortfall::NotSought | Shortfall::Unsolved | Shortfall::DrawingMissed => {}
             Shortfall::Unsupported(what) => r.detail = Some((*what).to_owned()),
-            Shortfall::Unknowns { unknowns, max } => (r.unknowns, r.limit) = (Some(*unknowns), Some(*max)),
+            Shortfall::Unknowns { unknowns, max } => {
+                (r.unknowns, r.limit) = (Some(*unknowns), Some(*max))
+            }
             Shortfall::Paths { paths, max } => (r.paths, r.limit) = (Some(*paths), Some(*max)),
             Shortfall::Budget { homotopies } => r.limit = Some(*homotopies),
-            Shortfall::Failed { failed, tracked } => (r.paths, r.of) = (Some(*failed), Some(*tracked)),
+            Shortfall::Failed { failed, tracked } => {
+                (r.paths, r.of) = (Some(*failed), Some(*tracked))
+            }
         }
         r
     }
@@ -132,7 +136,11 @@ impl IncompleteReport {
                 self.detail.as_deref().unwrap_or("not a node the homotopy is set up for")
             ),
             "too-many-unknowns" => {
-                format!("not enumerated: {} unknowns, more than {}", n(self.unknowns), n(self.limit))
+                format!(
+                    "not enumerated: {} unknowns, more than {}",
+                    n(self.unknowns),
+                    n(self.limit)
+                )
             }
             "too-many-paths" => format!(
                 "not enumerated: {} paths, more than {} (--max-paths): up to {} complex solutions not sought",
@@ -577,7 +585,10 @@ impl SolveReport {
                 .map(IncompleteReport::text)
                 .collect();
             if !why.is_empty() {
-                out.push_str(&format!("  step {k} not completely enumerated: {}\n", why.join("; ")));
+                out.push_str(&format!(
+                    "  step {k} not completely enumerated: {}\n",
+                    why.join("; ")
+                ));
             }
         }
         if !self.bounds_hit.is_empty() {

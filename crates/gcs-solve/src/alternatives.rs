@@ -147,7 +147,7 @@ pub(crate) fn realizations(
     }
     let doc: usize = core.iter().map(|&c| system.constraint(c).doc).sum();
     let not_held =
-        Unsupported("a floating node without a point-to-point distance to hold it by");
+        Unsupported("a floating node without a dimensioned point-to-point distance to hold it by");
     // Held in place (nothing left), or floating as a rigid whole (the three motions of the
     // plane), held by a distance between two of its points.
     let gauge = match dof.checked_sub(doc) {
@@ -155,7 +155,11 @@ pub(crate) fn realizations(
         Some(d) if d > 3 => {
             return Err(Unsupported("a flexible node (its realizations are not isolated)"));
         }
-        Some(1 | 2) => return Err(Unsupported("a node held in place in part only")),
+        Some(1 | 2) => {
+            return Err(Unsupported(
+                "a node held in place in part, or flexible (its realizations are not isolated)",
+            ));
+        }
         Some(0) => None,
         Some(3) => Some(
             core.iter()

@@ -616,8 +616,7 @@ pub fn path_count(target: &Target<'_>) -> usize {
 /// The two-homogeneous structure of the start system where it has fewer paths than the total
 /// degree (`None`: the total degree's), and the paths.
 fn start_system<'t>(target: &'t Target<'_>) -> (Option<&'t (Vec<bool>, Vec<[u32; 2]>)>, usize) {
-    let total =
-        target.degrees.iter().fold(1usize, |p, &d| p.saturating_mul(d.max(1) as usize));
+    let total = target.degrees.iter().fold(1usize, |p, &d| p.saturating_mul(d.max(1) as usize));
     let Some(groups @ (second, bidegrees)) = target.groups.as_ref() else { return (None, total) };
     let in_first = second.iter().filter(|s| !**s).count();
     // Paths: the ways to choose one factor per equation, `in_first` of the first group.

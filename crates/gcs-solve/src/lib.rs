@@ -1320,17 +1320,18 @@ pub fn solve(
         if let Some(enumerator) = search {
             let mut fallback: Option<(Vec<f64>, Vec<usize>, Vec<bool>)> = None;
             let bounds = (SEARCH_BOUND, options.max_paths / 4, SEARCH_HOMOTOPIES);
-            let (tried, cut, by) = enumerator.search(&node_forced, &x0, bounds, &mut |core, picks| {
-                if let Some((_, flips)) = settle(core) {
-                    best = Some((core.to_vec(), picks.clone(), flips));
-                    return true;
-                }
-                let (y, flips, _, _, placed) = place_all(core);
-                if fallback.is_none() && !ok && holds(&y, placed) {
-                    fallback = Some((core.to_vec(), picks.clone(), flips));
-                }
-                false
-            });
+            let (tried, cut, by) =
+                enumerator.search(&node_forced, &x0, bounds, &mut |core, picks| {
+                    if let Some((_, flips)) = settle(core) {
+                        best = Some((core.to_vec(), picks.clone(), flips));
+                        return true;
+                    }
+                    let (y, flips, _, _, placed) = place_all(core);
+                    if fallback.is_none() && !ok && holds(&y, placed) {
+                        fallback = Some((core.to_vec(), picks.clone(), flips));
+                    }
+                    false
+                });
             combinations = tried;
             search_cut = cut;
             cut_by.borrow_mut().extend(by);

@@ -433,9 +433,7 @@ impl<'a> Enumerator<'a> {
         }
         let (bodies, free) = self.bodies(k, children);
         // Each candidate as (record, configuration).
-        let found: Result<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>), Shortfall> = if self
-            .budget
-            .get()
+        let found: Result<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>), Shortfall> = if self.budget.get()
             == 0
         {
             Err(Shortfall::Budget { homotopies: self.budget_size.get() })

@@ -880,7 +880,8 @@ fn an_incomplete_node_says_why_and_how_much() {
         assert!(!p.complete);
         assert_eq!(p.shortfall, vec![Shortfall::NotSought]);
     }
-    let few = solve_with(&s, &SolveOptions { all: Some(8), max_paths: 32, ..SolveOptions::default() });
+    let few =
+        solve_with(&s, &SolveOptions { all: Some(8), max_paths: 32, ..SolveOptions::default() });
     let nodes = core(&few);
     for leaf in &nodes[..2] {
         assert!(!leaf.complete && leaf.paths.is_none() && leaf.candidates == 1, "{leaf:?}");
@@ -893,7 +894,9 @@ fn an_incomplete_node_says_why_and_how_much() {
     let all = solve_with(&s, &SolveOptions { all: Some(8), ..SolveOptions::default() });
     assert!(core(&all).iter().all(|p| p.complete && p.shortfall.is_empty()), "{:?}", all.plan);
     // A step in closed form is complete.
-    assert!(all.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).all(|p| p.complete));
+    assert!(
+        all.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).all(|p| p.complete)
+    );
 }
 
 /// A strip of `n` points, each after the first three placed by distances to the points one and
