@@ -183,7 +183,9 @@ pub struct Solution {
     /// side, and nodes of the core's DR-plan taken off their candidate 0 (the drawing's).
     pub backtracked: usize,
     /// Whether backtracking stopped at its bound with a step still without a candidate, or
-    /// the search over the core's combinations ([`Solution::combinations`]) stopped at
+    /// the search over the closed-form steps' sides stopped at its budget of placements
+    /// without one that holds, or the search over the core's combinations
+    /// ([`Solution::combinations`]) stopped at
     /// [`SEARCH_BOUND`] (or at its budget of homotopies) before one held with the drawing's
     /// chirality.
     pub bound_hit: bool,
@@ -1352,7 +1354,9 @@ pub fn solve(
                 let reversed = flips.iter().filter(|f| **f).count();
                 (flips, reversed, false)
             }
-            None => (flips, reversed, bound_hit),
+            // (Nothing found: the placement budget, if it cut a search over the closed-form
+            // steps' sides, left it short too.)
+            None => (flips, reversed, bound_hit || cut_by.borrow().contains(&Bound::Placements)),
         }
     };
     let bound_hit = bound_hit || search_cut;
