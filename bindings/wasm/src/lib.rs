@@ -47,12 +47,48 @@ export interface Failure { schema: number; file: string; error: string; }
 export interface Checked {
   constraint: string; residual: number; allowance: number; conflicting: boolean; spanning_group: string[];
 }
+/** Why a step's candidates may not be all its real solutions (`PlanStep.incomplete`). */
+export interface Incomplete {
+  reason: "not-sought" | "core-unsolved" | "unsupported" | "too-many-unknowns" | "too-many-paths"
+    | "homotopy-budget" | "paths-failed" | "drawing-missed";
+  /** paths-failed: the undecided paths; too-many-paths: the node's paths (at most that many complex solutions missed). */
+  paths?: number;
+  /** paths-failed: the paths tracked. */
+  of?: number;
+  /** too-many-unknowns: the node's unknowns. */
+  unknowns?: number;
+  /** The bound exceeded (paths, unknowns or node homotopies). */
+  limit?: number;
+  /** unsupported: what the node is. */
+  detail?: string;
+}
+/** A homotopy's paths and what they ended at. */
+export interface Paths { tracked: number; finite: number; real: number; failed: number; singular?: number; }
+/** A step of the solve (`plan`). */
+export interface PlanStep {
+  entities: string[]; method: "closed-form" | "newton"; candidates: number; chosen: number | null;
+  constraints: string[]; complete: boolean; fixed: boolean; paths?: Paths;
+  incomplete?: Incomplete[]; children?: number[]; groups?: string[];
+}
+/** A bound that cut a search of the solve short. */
+export interface BoundHit {
+  bound: "reversals" | "placements" | "combinations" | "search-homotopies" | "node-homotopies"
+    | "max-solutions" | "enumeration-placements";
+  limit: number;
+}
 /** The line of `gcs solve --format json` (docs/format.md §4, "Solving"). */
 export interface SolveReport {
   schema: number; model: string; file: string; status: "solved" | "inconsistent" | "failed";
   max_residual: number; moved: number; entities: { id: string; [field: string]: unknown }[];
-  conflicting: Checked[]; redundant: Checked[]; worst?: string; tolerance: number; scale: number;
-  iterations: number; analysis_backend: string;
+  conflicting: Checked[]; redundant: Checked[];
+  no_solution: { entities: string[]; constraints: string[] }[];
+  turned?: string[]; measured?: { [field: string]: unknown }[];
+  plan: PlanStep[]; backtracked: number; bound_hit: boolean; combinations?: number;
+  bounds_hit?: BoundHit[];
+  worst?: string; tolerance: number; scale: number; iterations: number; analysis_backend: string;
+  /** With `--all` (the CLI's): the realizations, each in the shape of `entities`. */
+  solutions?: { id: string; [field: string]: unknown }[][];
+  truncated?: boolean; core_choices?: number[]; node_choices?: number[][];
   [field: string]: unknown;
 }
 /** The line of `gcs check --format json`. */

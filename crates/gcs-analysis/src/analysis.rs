@@ -13,8 +13,8 @@ use gcs_rank::{
 };
 
 use gcs_decompose::{
-    Cluster, ClusterMethod, ClusterOptions, Decomposition, DecompositionNode, PebbleReport,
-    RemovalOrder, Statistics, pebble_game,
+    Cluster, ClusterMethod, ClusterOptions, Decomposition, DecompositionNode, GroupRigidity,
+    PebbleReport, RemovalOrder, Statistics, pebble_game,
 };
 
 use crate::error::AnalysisError;
@@ -233,6 +233,9 @@ pub struct Analysis {
     pub decomposition: Option<Vec<DecompositionNode>>,
     /// Counters of the W-decomposition.
     pub decomposition_statistics: Option<Statistics>,
+    /// With [`AnalysisOptions::decompose`]: each declared group ([`gcs_model::System::groups`]),
+    /// rigid on its own constraints (a node of the DR-plan) or not, in their order.
+    pub group_rigidity: Option<Vec<GroupRigidity>>,
     /// The drawing itself: its rank against the generic one, the dependencies at a singular
     /// position, whether it satisfies its constraints (`None` when some entity has no sketch
     /// position, or [`AnalysisOptions::sketch`] is off).
@@ -887,9 +890,9 @@ fn analyze_in_field(
         (Arithmetic::Combinatorial, Some(_)) => in_field(Arithmetic::ModP)?,
         _ => in_field(clusters_arithmetic)?,
     };
-    let (decomposition, decomposition_statistics) = match decomposition {
-        Some((d, s)) => (Some(d), Some(s)),
-        None => (None, None),
+    let (decomposition, decomposition_statistics, group_rigidity) = match decomposition {
+        Some((d, s, g)) => (Some(d), Some(s), Some(g)),
+        None => (None, None, None),
     };
     let seed = options.witness.seed;
     let (global_rigidity, cluster_global_rigidity) = if options.global_rigidity {
@@ -948,6 +951,7 @@ fn analyze_in_field(
         clusters_arithmetic,
         decomposition,
         decomposition_statistics,
+        group_rigidity,
         float_qr_rank: outcome.float_qr_rank,
         sketch,
         uncertain,

@@ -39,6 +39,8 @@ pub use analysis::{
     modular_error_bound,
 };
 pub use error::AnalysisError;
-pub use gcs_decompose::{Cluster, ClusterMethod, DecompositionNode, RemovalOrder, Statistics};
+pub use gcs_decompose::{
+    Cluster, ClusterMethod, DecompositionNode, GroupRigidity, RemovalOrder, Statistics,
+};
 pub use global::{GlobalMethod, GlobalRigidity};
 pub use sketch::{Configuration, Position, Residual, SketchAnalysis};

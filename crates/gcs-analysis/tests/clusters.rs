@@ -473,3 +473,78 @@ fn a_rigid_set_across_a_3d_line_hinge() {
         assert_eq!(found, want, "{method:?}");
     }
 }
+
+/// Every node of a decomposition tree, depth first.
+fn tree_nodes(node: &DecompositionNode) -> Vec<&DecompositionNode> {
+    let mut out = vec![node];
+    for c in &node.children {
+        out.extend(tree_nodes(c));
+    }
+    out
+}
+
+/// Whether every child of every node lies in its parent (a tree by containment).
+fn nested(node: &DecompositionNode) -> bool {
+    node.children.iter().all(|c| {
+        c.entities.iter().all(|e| node.entities.contains(e))
+            && c.constraints.iter().all(|k| node.constraints.contains(k))
+            && c.entities.len() < node.entities.len()
+            && nested(c)
+    })
+}
+
+/// Feature incorporation (issue 14, the ESM paper §2.1): a declared group that is rigid on its
+/// own constraints is a node of the analysis' DR-plan. In a chain of three K3,3 (blocks A, B,
+/// C), the W-decomposition does not have both pairs A ∪ B and B ∪ C as nodes; declared, each is
+/// one (marked with its group), the tree stays nested, and it is W-decomposed below into its two
+/// K3,3. A group that is not rigid (A and one point of B) is no node, and the analysis says it
+/// has two rigid parts. Without groups, the decomposition is the same as before.
+#[test]
+fn a_declared_rigid_group_is_a_node_of_the_decomposition() {
+    let chain = gcs_model::generate::k33_chain(3, 1);
+    let ids =
+        |range: std::ops::Range<usize>| -> Vec<String> { range.map(|i| format!("p{i}")).collect() };
+    let set = |v: &[String]| -> BTreeSet<String> { v.iter().cloned().collect() };
+    let plain = run(&chain, true);
+    let [tree] = plain.decomposition.as_deref().unwrap() else { panic!("one cluster") };
+    let has = |tree: &DecompositionNode, want: &BTreeSet<String>| {
+        tree_nodes(tree).iter().any(|n| entity_set(&chain, &n.entities) == *want)
+    };
+    let (ab, bc) = (set(&ids(0..12)), set(&ids(6..18)));
+    assert!(!(has(tree, &ab) && has(tree, &bc)), "the plain plan has not both pairs");
+    assert!(plain.group_rigidity.as_ref().is_some_and(Vec::is_empty));
+    for groups in [vec![("AB", 0..12)], vec![("BC", 6..18)], vec![("AB", 0..12), ("BC", 6..18)]] {
+        let mut b = gcs_model::SystemBuilder::from_system(chain.clone());
+        for (name, range) in &groups {
+            let members = ids(range.clone());
+            b.group(name, &members.iter().map(String::as_str).collect::<Vec<_>>()).unwrap();
+        }
+        let s = b.build();
+        let a = run(&s, true);
+        let [tree] = a.decomposition.as_deref().unwrap() else { panic!("one cluster") };
+        assert!(nested(tree));
+        for (k, (name, range)) in groups.iter().enumerate() {
+            let want = set(&ids(range.clone()));
+            let node = (tree_nodes(tree).into_iter())
+                .find(|n| n.groups == vec![k])
+                .unwrap_or_else(|| panic!("{name} is a node"));
+            assert_eq!(entity_set(&s, &node.entities), want, "{name}");
+            assert_eq!(node.constraints.len(), 2 * 12 - 3, "{name}: its own distances");
+            let kids: Vec<BTreeSet<String>> =
+                node.children.iter().map(|c| entity_set(&s, &c.entities)).collect();
+            assert_eq!(kids.len(), 2, "{name}: two K3,3 below it: {kids:?}");
+        }
+        let verdicts = a.group_rigidity.unwrap();
+        assert!(verdicts.iter().all(|g| g.rigid() && g.parts == 1), "{verdicts:?}");
+    }
+    let mut b = gcs_model::SystemBuilder::from_system(chain.clone());
+    let loose = ids(0..7);
+    b.group("loose", &loose.iter().map(String::as_str).collect::<Vec<_>>()).unwrap();
+    let s = b.build();
+    let a = run(&s, true);
+    let verdict = &a.group_rigidity.unwrap()[0];
+    assert!(!verdict.rigid() && verdict.parts == 2, "{verdict:?}");
+    let [tree] = a.decomposition.as_deref().unwrap() else { panic!("one cluster") };
+    assert!(tree_nodes(tree).iter().all(|n| n.groups.is_empty()));
+    assert_eq!(a.decomposition, plain.decomposition, "no node changes");
+}

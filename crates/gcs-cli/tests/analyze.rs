@@ -610,3 +610,61 @@ fn pictures_of_the_analysis() {
     assert!(plan.contains("<title>12 entities: a1"), "{plan}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Every node of a decomposition tree in the JSON report, depth first.
+fn json_nodes(node: &Value) -> Vec<&Value> {
+    let mut out = vec![node];
+    for c in node["children"].as_array().into_iter().flatten() {
+        out.extend(json_nodes(c));
+    }
+    out
+}
+
+/// `gcs analyze --decompose` incorporates declared groups (issue 14): a chain of three K3,3
+/// with a rigid group (blocks A and B) and a loose one (A and one point of B): the first is a
+/// node of the DR-plan marked with its id, the second is not, and the report says why.
+#[test]
+fn decompose_makes_a_rigid_group_a_node() {
+    let mut b = gcs_model::SystemBuilder::from_system(gcs_model::generate::k33_chain(3, 1));
+    let ab: Vec<String> = (0..12).map(|i| format!("p{i}")).collect();
+    let loose: Vec<String> = (0..7).map(|i| format!("p{i}")).collect();
+    b.group("AB", &ab.iter().map(String::as_str).collect::<Vec<_>>()).unwrap();
+    b.group("loose", &loose.iter().map(String::as_str).collect::<Vec<_>>()).unwrap();
+    let dir = std::env::temp_dir().join(format!("gcs-groups-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("chain.ron");
+    std::fs::write(&file, b.build().to_ron()).unwrap();
+    let path = file.to_str().unwrap();
+    let (code, out, err) = gcs(&["analyze", "--decompose", "--format", "json", path]);
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(
+        v["groups"],
+        serde_json::json!([
+            {"id": "AB", "rigid": true, "parts": 1},
+            {"id": "loose", "rigid": false, "parts": 2},
+        ])
+    );
+    let nodes = json_nodes(&v["decomposition"][0]);
+    let marked: Vec<&&Value> = nodes.iter().filter(|n| n.get("groups").is_some()).collect();
+    let [node] = marked.as_slice() else { panic!("one node is a group: {v}") };
+    assert_eq!(node["groups"], serde_json::json!(["AB"]));
+    let mut entities: Vec<&str> =
+        node["entities"].as_array().unwrap().iter().map(|e| e.as_str().unwrap()).collect();
+    entities.sort_unstable();
+    let mut want: Vec<&str> = ab.iter().map(String::as_str).collect();
+    want.sort_unstable();
+    assert_eq!(entities, want);
+    let (_, text, _) = gcs(&["analyze", "--decompose", path]);
+    assert!(text.contains("(group AB)"), "{text}");
+    assert!(
+        text.contains(
+            "group loose is not rigid on its own constraints (2 rigid parts): not a node"
+        ),
+        "{text}"
+    );
+    // Without --decompose, nothing of the groups.
+    let (_, out, _) = gcs(&["analyze", "--format", "json", path]);
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    assert!(v.get("groups").is_none());
+}

@@ -199,6 +199,9 @@ fn the_core_is_enumerated_by_homotopy_continuation() {
     assert_eq!(code, 0);
     let kept: Value = serde_json::from_str(out.trim()).unwrap();
     assert!(kept["plan"][0].get("paths").is_none());
+    assert_eq!(kept["plan"][0]["complete"], false);
+    assert_eq!(kept["plan"][0]["incomplete"], serde_json::json!([{"reason": "not-sought"}]));
+    assert!(plan.iter().all(|p| p.get("incomplete").is_none()), "complete: no reason");
     assert_eq!(kept["solutions"].as_array().unwrap().len(), 1);
 }
 
@@ -297,4 +300,35 @@ fn the_autosolve_backtracks_over_the_core() {
     let (_, text, _) = gcs(&["solve", file.to_str().unwrap()]);
     assert!(text.contains("status: solved"), "{text}");
     assert!(text.contains("backtracking over the core:"), "{text}");
+}
+
+/// A node that is not completely enumerated says why and how many solutions may be missing
+/// (issue 14): two K3,3 with fewer paths allowed than a K3,3's 70; the bounds that cut a
+/// search short are listed (here `--max-solutions`).
+#[test]
+fn an_incomplete_node_says_why() {
+    let args = ["solve", "--all", "--max-paths", "32", "--max-solutions", "2"];
+    let (code, out, err) =
+        gcs(&[&args[..], &["--format", "json", "data/paper/two_k33.ron"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: Value = serde_json::from_str(out.trim()).unwrap();
+    for k in 0..2 {
+        assert_eq!(v["plan"][k]["complete"], false);
+        assert_eq!(
+            v["plan"][k]["incomplete"],
+            serde_json::json!([{"reason": "too-many-paths", "paths": 70, "limit": 32}]),
+            "{v}"
+        );
+    }
+    assert_eq!(v["plan"][2]["complete"], true);
+    assert_eq!(v["truncated"], true);
+    assert_eq!(v["bounds_hit"], serde_json::json!([{"bound": "max-solutions", "limit": 2}]));
+    let (_, text, _) = gcs(&[&args[..], &["data/paper/two_k33.ron"]].concat());
+    assert!(
+        text.contains(
+            "step 0 not completely enumerated: not enumerated: 70 paths, more than 32 (--max-paths): up to 70 complex solutions not sought"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("bounds that cut a search short: max-solutions (2)"), "{text}");
 }

@@ -20,9 +20,27 @@ pub struct Cluster {
     pub grounded: bool,
 }
 
-/// The W-decompositions of the clusters (one tree per cluster, in the order of the clusters)
-/// and the work they took.
-pub type Decomposition = (Vec<DecompositionNode>, Statistics);
+/// The W-decompositions of the clusters (one tree per cluster, in the order of the clusters),
+/// the work they took, and how each declared group was taken.
+pub type Decomposition = (Vec<DecompositionNode>, Statistics, Vec<GroupRigidity>);
+
+/// A group the user declared ([`System::groups`]) as the W-decomposition took it: rigid on its
+/// own constraints (those among its entities), it is a node of the DR-plan; otherwise not.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GroupRigidity {
+    /// The group (its index in [`System::groups`]).
+    pub group: usize,
+    /// The maximal rigid subsystems of the group on its own constraints: 1 when it is rigid
+    /// (0 for a group of no entity with coordinates).
+    pub parts: usize,
+}
+
+impl GroupRigidity {
+    /// Whether the group is rigid on its own constraints (and so a node of the DR-plan).
+    pub fn rigid(&self) -> bool {
+        self.parts == 1
+    }
+}
 
 /// How [`clusters`] works.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,9 +137,96 @@ pub fn clusters<F: Field>(
             tree.constraints = c.constraints.clone();
             trees.push(tree);
         }
-        (trees, d.stats)
+        let groups = incorporate(&mut d, system, layout, &sub, &mut trees);
+        (trees, d.stats, groups)
     });
     Ok((finish_clusters(system, &sub, raw), decomposition))
+}
+
+/// The entities with coordinates of a list (composite entities replaced by their parts), sorted.
+fn base_entities(system: &System, layout: &Layout, entities: &[EntityIdx]) -> Vec<EntityIdx> {
+    let mut out: Vec<EntityIdx> = Vec::new();
+    for &e in entities {
+        if system.entity(e).kind().is_composite() {
+            out.extend(system.entity(e).geometry.parts().iter().copied());
+        } else {
+            out.push(e);
+        }
+    }
+    out.retain(|e| layout.repr(*e).is_some());
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Whether sorted `small` lies in sorted `large`.
+fn within(small: &[EntityIdx], large: &[EntityIdx]) -> bool {
+    small.iter().all(|e| large.binary_search(e).is_ok())
+}
+
+/// Feature incorporation (the ESM paper §2.1, after Sitharam et al.): each declared group that
+/// is rigid on its own constraints becomes a node of the DR-plan of the cluster holding it —
+/// marked where a node already is the group, otherwise decomposed on its own and put under the
+/// smallest node that holds it (the first child holding it, recursively), in place of that
+/// node's children that lie inside it (the group's own decomposition covers them). Groups are
+/// taken largest first, so that a group inside another goes below it. Returns the verdict on
+/// every group, in the order of [`System::groups`]; nothing changes without groups.
+fn incorporate<F: Field>(
+    d: &mut crate::wdec::Decomposer<'_, '_, F>,
+    system: &System,
+    layout: &Layout,
+    sub: &crate::rigid::Subsystem<F>,
+    trees: &mut [DecompositionNode],
+) -> Vec<GroupRigidity> {
+    let base = |n: &DecompositionNode| base_entities(system, layout, &n.entities);
+    let mut order: Vec<(usize, Vec<EntityIdx>)> = (system.groups().iter().enumerate())
+        .map(|(k, g)| (k, base_entities(system, layout, &g.entities)))
+        .collect();
+    order.sort_by_key(|(k, e)| (std::cmp::Reverse(e.len()), *k));
+    let mut verdicts = Vec::new();
+    for (k, entities) in order {
+        let groups = (sub.groups.iter())
+            .filter(|g| {
+                matches!(g.label, crate::rigid::Label::Constraint(_))
+                    && within(&g.entities, &entities)
+            })
+            .cloned()
+            .collect();
+        let gsub = crate::rigid::Subsystem { entities: entities.clone(), groups };
+        let parts =
+            if entities.is_empty() { 0 } else { crate::rigid::clusters(d.ctx, &gsub).len() };
+        verdicts.push(GroupRigidity { group: k, parts });
+        if parts != 1 {
+            continue;
+        }
+        let Some(tree) = trees.iter_mut().find(|t| within(&entities, &base(t))) else { continue };
+        // A node that is the group already.
+        fn mark(
+            node: &mut DecompositionNode,
+            is: &dyn Fn(&DecompositionNode) -> bool,
+            k: usize,
+        ) -> bool {
+            if is(node) {
+                node.groups.push(k);
+                return true;
+            }
+            node.children.iter_mut().any(|c| mark(c, is, k))
+        }
+        if mark(tree, &|n| base(n) == entities, k) {
+            continue;
+        }
+        let mut node = d.decompose(&gsub);
+        node.groups.push(k);
+        let mut at = tree;
+        while let Some(i) = at.children.iter().position(|c| within(&entities, &base(c))) {
+            at = &mut at.children[i];
+        }
+        at.children.retain(|c| !within(&base(c), &entities));
+        at.children.push(node);
+        at.children.sort_by(|a, b| a.entities.cmp(&b.entities));
+    }
+    verdicts.sort_by_key(|v| v.group);
+    verdicts
 }
 
 /// Adds segments to the clusters holding both their points (a segment in none gets its own),

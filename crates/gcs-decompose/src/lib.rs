@@ -41,7 +41,7 @@ pub mod pebble;
 mod rigid;
 mod wdec;
 
-pub use clusters::{Cluster, ClusterOptions, Decomposition, clusters};
+pub use clusters::{Cluster, ClusterOptions, Decomposition, GroupRigidity, clusters};
 pub use pebble::{PebbleReport, pebble_game};
 pub use rigid::ClusterMethod;
 pub use wdec::{DecompositionNode, RemovalOrder, Statistics};

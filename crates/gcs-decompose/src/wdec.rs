@@ -93,6 +93,9 @@ pub struct DecompositionNode {
     pub constraints: Vec<ConstraintIdx>,
     /// Sub-subsystems; empty for a W-indecomposable leaf.
     pub children: Vec<DecompositionNode>,
+    /// The groups the user declared ([`System::groups`], by index) that this node is: a rigid
+    /// group is a node of the DR-plan (feature incorporation, [`crate::clusters`]).
+    pub groups: Vec<usize>,
 }
 
 /// A node over the labels of a (possibly reduced) subsystem.
@@ -112,7 +115,7 @@ struct Replacement {
 }
 
 pub(crate) struct Decomposer<'c, 'a, F> {
-    ctx: &'c Context<'a, F>,
+    pub(crate) ctx: &'c Context<'a, F>,
     witness: Vec<F>,
     order: RemovalOrder,
     next_virtual: usize,
@@ -169,7 +172,7 @@ impl<'c, 'a, F: Field> Decomposer<'c, 'a, F> {
         let mut children: Vec<DecompositionNode> =
             node.children.into_iter().map(|c| self.to_public(c)).collect();
         children.sort_by(|a, b| a.entities.cmp(&b.entities));
-        DecompositionNode { entities, constraints, children }
+        DecompositionNode { entities, constraints, children, groups: Vec::new() }
     }
 
     fn leaf(sub: &Subsystem<F>) -> Node {

@@ -1,7 +1,7 @@
 //! Clusters and W-decompositions in reports: as data (format §2 `clusters`, §3
 //! `decomposition`), as text trees, and as a Graphviz DOT graph.
 
-use gcs_analysis::{Cluster, DecompositionNode, GlobalRigidity};
+use gcs_analysis::{Cluster, DecompositionNode, GlobalRigidity, GroupRigidity};
 use gcs_model::{ConstraintIdx, EntityIdx, System};
 use serde::{Deserialize, Serialize};
 
@@ -27,6 +27,47 @@ pub struct NodeReport {
     pub constraints: Vec<String>,
     /// The rigid subsystems it decomposes into.
     pub children: Vec<NodeReport>,
+    /// The declared groups (ids) this node is (extension; absent when none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub groups: Vec<String>,
+}
+
+/// A declared group as the W-decomposition took it (format §3, `groups`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GroupReport {
+    /// Its id.
+    pub id: String,
+    /// Whether it is rigid on its own constraints (those among its entities): then it is a
+    /// node of the DR-plan.
+    pub rigid: bool,
+    /// Its maximal rigid subsystems on its own constraints (1 when rigid).
+    pub parts: usize,
+}
+
+/// The groups' verdicts as report data.
+pub fn groups_report(system: &System, groups: &[GroupRigidity]) -> Vec<GroupReport> {
+    (groups.iter())
+        .map(|g| GroupReport {
+            id: system.groups()[g.group].id.clone(),
+            rigid: g.rigid(),
+            parts: g.parts,
+        })
+        .collect()
+}
+
+/// The groups that are not nodes of the DR-plan, as text lines (a rigid group is marked in the
+/// tree).
+pub fn groups_text(system: &System, groups: &[GroupRigidity]) -> Vec<String> {
+    (groups.iter())
+        .filter(|g| !g.rigid())
+        .map(|g| {
+            format!(
+                "    group {} is not rigid on its own constraints ({} rigid parts): not a node",
+                system.groups()[g.group].id,
+                g.parts
+            )
+        })
+        .collect()
 }
 
 fn entity_ids(system: &System, es: &[EntityIdx]) -> Vec<String> {
@@ -80,6 +121,7 @@ pub fn tree_report(system: &System, node: &DecompositionNode) -> NodeReport {
         entities: entity_ids(system, &node.entities),
         constraints: constraint_ids(system, &node.constraints),
         children: node.children.iter().map(|c| tree_report(system, c)).collect(),
+        groups: node.groups.iter().map(|g| system.groups()[*g].id.clone()).collect(),
     }
 }
 
@@ -163,6 +205,14 @@ pub fn tree_text(system: &System, node: &DecompositionNode, out: &mut Vec<String
             if node.constraints.len() == 1 { "" } else { "s" },
             if node.children.is_empty() { ", W-indecomposable" } else { "" }
         );
+        let label = match node.groups.as_slice() {
+            [] => label,
+            groups => {
+                let ids: Vec<&str> =
+                    groups.iter().map(|g| system.groups()[*g].id.as_str()).collect();
+                format!("{label} (group {})", ids.join(", "))
+            }
+        };
         if root {
             out.push(format!("    {label}"));
         } else {

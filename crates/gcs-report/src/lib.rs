@@ -50,7 +50,9 @@ pub use report::{
     ArithmeticName, BackendName, GlobalRigidityReport, ProofName, RankMethodName, RedundantReport,
     Report, SCHEMA, WitnessName, failure_json, text, text_with_solution,
 };
-pub use solve::{CheckedReport, NoSolutionReport, PlanReport, SolveReport};
+pub use solve::{
+    BoundReport, CheckedReport, IncompleteReport, NoSolutionReport, PlanReport, SolveReport,
+};
 pub use structural::{
     DmReport, DorSource, MethodReport, PartReport, Structural, StructuralReport, VerdictName,
 };

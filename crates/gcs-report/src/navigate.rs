@@ -130,6 +130,9 @@ pub fn navigate_page(
                     "singular": c.singular,
                 })),
                 "complete": p.complete,
+                "incomplete": (p.shortfall.iter())
+                    .map(|w| crate::solve::IncompleteReport::new(w).text())
+                    .collect::<Vec<_>>(),
             })
         })
         .collect();
@@ -287,6 +290,7 @@ D.plan.forEach((p) => {
   if (p.children && p.children.length) info.push('steps ' + p.children.join(', ') + ' as rigid bodies');
   if (p.paths) info.push(p.paths.real + ' real of ' + p.paths.finite + ' complex, ' + p.paths.tracked + ' paths' +
     (p.paths.failed ? ', ' + p.paths.failed + ' undecided' : ''));
+  if (!p.complete && p.incomplete && p.incomplete.length) info.push('not all: ' + p.incomplete.join('; '));
   if (info.length) {
     const i = document.createElement('span');
     i.className = 'info';

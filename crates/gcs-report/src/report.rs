@@ -245,6 +245,10 @@ pub struct Report {
     /// With `--decompose`: `false` when the work budget ran out.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub decomposition_complete: Option<bool>,
+    /// With `--decompose`, for a model with declared groups: each group, rigid on its own
+    /// constraints (then a node of the DR-plan) or not (extension; absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub groups: Option<Vec<clusters::GroupReport>>,
     /// The seed of the witness search.
     pub seed: u64,
     /// The float backend's tolerance.
@@ -463,6 +467,9 @@ impl Report {
                 .as_ref()
                 .map(|trees| trees.iter().map(|t| clusters::tree_report(system, t)).collect()),
             decomposition_complete: a.decomposition_statistics.map(|s| s.complete),
+            groups: (a.group_rigidity.as_ref())
+                .filter(|g| !g.is_empty())
+                .map(|g| clusters::groups_report(system, g)),
             seed: a.seed,
             tolerance: match a.backend {
                 Backend::Float { tolerance } => Some(tolerance),
@@ -744,6 +751,9 @@ pub fn text_with_solution(
             clusters::tree_text(system, t, &mut lines);
         }
         for line in lines {
+            push(&mut out, line);
+        }
+        for line in clusters::groups_text(system, a.group_rigidity.as_deref().unwrap_or(&[])) {
             push(&mut out, line);
         }
     }

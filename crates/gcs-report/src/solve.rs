@@ -60,6 +60,10 @@ pub struct PlanReport {
     /// With `--all`, for a core enumerated by homotopy continuation: its paths.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paths: Option<PathsReport>,
+    /// When `complete` is false: why, and how much may be missing (extension; absent when
+    /// complete).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub incomplete: Vec<IncompleteReport>,
     /// For a node of the core's DR-plan assembled from others: their steps (indices in
     /// `plan`), whose chosen realizations it places as rigid bodies; absent otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -68,6 +72,108 @@ pub struct PlanReport {
     /// DR-plan); absent otherwise.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub groups: Vec<String>,
+}
+
+/// Why a step's candidates may not be all its real solutions (format §4, "Solving":
+/// `incomplete`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct IncompleteReport {
+    /// `not-sought`, `core-unsolved`, `unsupported`, `too-many-unknowns`, `too-many-paths`,
+    /// `homotopy-budget`, `paths-failed`, `drawing-missed`.
+    pub reason: String,
+    /// `paths-failed`: the undecided paths; `too-many-paths`: the node's paths (none tracked).
+    /// Either way, at most that many complex solutions missed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paths: Option<usize>,
+    /// `paths-failed`: the paths tracked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub of: Option<usize>,
+    /// `too-many-unknowns`: the node's unknowns.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unknowns: Option<usize>,
+    /// The bound exceeded: the most paths, unknowns or node homotopies allowed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limit: Option<usize>,
+    /// `unsupported`: what the node is that the homotopy is not set up for.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+}
+
+impl IncompleteReport {
+    pub(crate) fn new(why: &gcs_solve::alternatives::Shortfall) -> Self {
+        use gcs_solve::alternatives::Shortfall;
+        let mut r = IncompleteReport {
+            reason: why.name().to_owned(),
+            paths: None,
+            of: None,
+            unknowns: None,
+            limit: None,
+            detail: None,
+        };
+        match why {
+            Shortfall::NotSought | Shortfall::Unsolved | Shortfall::DrawingMissed => {}
+            Shortfall::Unsupported(what) => r.detail = Some((*what).to_owned()),
+            Shortfall::Unknowns { unknowns, max } => {
+                (r.unknowns, r.limit) = (Some(*unknowns), Some(*max))
+            }
+            Shortfall::Paths { paths, max } => (r.paths, r.limit) = (Some(*paths), Some(*max)),
+            Shortfall::Budget { homotopies } => r.limit = Some(*homotopies),
+            Shortfall::Failed { failed, tracked } => {
+                (r.paths, r.of) = (Some(*failed), Some(*tracked))
+            }
+        }
+        r
+    }
+
+    /// The words of the text report (and the navigator's).
+    pub(crate) fn text(&self) -> String {
+        let n = |v: Option<usize>| v.map_or_else(|| "?".to_owned(), |v| v.to_string());
+        match self.reason.as_str() {
+            "not-sought" => "solved from the drawing only (--all enumerates)".to_owned(),
+            "core-unsolved" => "the core was not solved, so not enumerated".to_owned(),
+            "unsupported" => format!(
+                "not enumerated: {}",
+                self.detail.as_deref().unwrap_or("not a node the homotopy is set up for")
+            ),
+            "too-many-unknowns" => {
+                format!(
+                    "not enumerated: {} unknowns, more than {}",
+                    n(self.unknowns),
+                    n(self.limit)
+                )
+            }
+            "too-many-paths" => format!(
+                "not enumerated: {} paths, more than {} (--max-paths): up to {} complex solutions not sought",
+                n(self.paths),
+                n(self.limit),
+                n(self.paths)
+            ),
+            "homotopy-budget" => {
+                format!("not enumerated: the solve's {} node homotopies were spent", n(self.limit))
+            }
+            "paths-failed" => format!(
+                "{} of {} paths undecided: up to {} complex solutions missed",
+                n(self.paths),
+                n(self.of),
+                n(self.paths)
+            ),
+            "drawing-missed" => {
+                "the paths missed the solved realization (added): others may be missing too"
+                    .to_owned()
+            }
+            other => other.to_owned(),
+        }
+    }
+}
+
+/// A bound that cut a search of the solve short (format §4, "Solving": `bounds_hit`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BoundReport {
+    /// `reversals`, `placements`, `combinations`, `search-homotopies`, `node-homotopies`,
+    /// `max-solutions`, `enumeration-placements`.
+    pub bound: String,
+    /// Its value.
+    pub limit: usize,
 }
 
 /// The paths of a core's homotopy (`gcs solve --all`) and what they ended at.
@@ -128,6 +234,9 @@ pub struct SolveReport {
     /// (extension; absent when there was no search).
     #[serde(default, skip_serializing_if = "crate::report::is_zero")]
     pub combinations: usize,
+    /// Every bound that cut a search of the solve short (extension; absent when none did).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bounds_hit: Vec<BoundReport>,
     /// When the solve failed: the constraint with the largest residual.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub worst: Option<String>,
@@ -261,6 +370,7 @@ impl SolveReport {
                     failed: c.failed,
                     singular: c.singular,
                 }),
+                incomplete: p.shortfall.iter().map(IncompleteReport::new).collect(),
                 children: p.children.clone(),
                 groups: p.groups.iter().map(|g| system.groups()[*g].id.clone()).collect(),
             })
@@ -296,6 +406,9 @@ impl SolveReport {
             backtracked: solution.backtracked,
             bound_hit: solution.bound_hit,
             combinations: solution.combinations,
+            bounds_hit: (solution.bounds_hit.iter())
+                .map(|b| BoundReport { bound: b.name().to_owned(), limit: b.limit() })
+                .collect(),
             worst: solution.worst.map(id),
             tolerance,
             scale: solution.scale,
@@ -463,6 +576,25 @@ impl SolveReport {
                     format!(", {} taken (against the drawing's first choice)", moved.join(", "))
                 }
             ));
+        }
+        // Why a step's candidates may not be all (except the default: solved from the
+        // drawing, nothing sought).
+        for (k, p) in self.plan.iter().enumerate() {
+            let why: Vec<String> = (p.incomplete.iter())
+                .filter(|i| i.reason != "not-sought")
+                .map(IncompleteReport::text)
+                .collect();
+            if !why.is_empty() {
+                out.push_str(&format!(
+                    "  step {k} not completely enumerated: {}\n",
+                    why.join("; ")
+                ));
+            }
+        }
+        if !self.bounds_hit.is_empty() {
+            let bounds: Vec<String> =
+                self.bounds_hit.iter().map(|b| format!("{} ({})", b.bound, b.limit)).collect();
+            out.push_str(&format!("  bounds that cut a search short: {}\n", bounds.join(", ")));
         }
         if self.bound_hit {
             out.push_str(&format!(

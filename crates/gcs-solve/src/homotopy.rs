@@ -605,6 +605,32 @@ fn product_starts(factors: &[Vec<Vec<C>>], second: &[bool]) -> Option<Vec<Vec<C>
     Some(starts)
 }
 
+/// The paths of `target`'s homotopy: the solutions of its start system — the total degree
+/// `Π d_i`, or the two-homogeneous Bézout number where [`Target::groups`] gives fewer —
+/// saturating at `usize::MAX`. An upper bound on its isolated solutions; [`solve`] tracks
+/// them when there are at most its `max_paths`.
+pub fn path_count(target: &Target<'_>) -> usize {
+    start_system(target).1
+}
+
+/// The two-homogeneous structure of the start system where it has fewer paths than the total
+/// degree (`None`: the total degree's), and the paths.
+fn start_system<'t>(target: &'t Target<'_>) -> (Option<&'t (Vec<bool>, Vec<[u32; 2]>)>, usize) {
+    let total = target.degrees.iter().fold(1usize, |p, &d| p.saturating_mul(d.max(1) as usize));
+    let Some(groups @ (second, bidegrees)) = target.groups.as_ref() else { return (None, total) };
+    let in_first = second.iter().filter(|s| !**s).count();
+    // Paths: the ways to choose one factor per equation, `in_first` of the first group.
+    let mut ways = vec![0usize; in_first + 1];
+    ways[0] = 1;
+    for b in bidegrees {
+        for k in (0..=in_first).rev() {
+            let from_first = if k > 0 { ways[k - 1].saturating_mul(b[0] as usize) } else { 0 };
+            ways[k] = ways[k].saturating_mul(b[1] as usize).saturating_add(from_first);
+        }
+    }
+    if ways[in_first] < total { (Some(groups), ways[in_first]) } else { (None, total) }
+}
+
 /// Every isolated nonsingular solution of `target` (see the module documentation), with
 /// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
 /// `max_paths` (or [`MAX_PATHS`]) paths.
@@ -617,21 +643,10 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
     };
     let gamma = unit();
     let chart: Vec<C> = (0..=n).map(|_| unit()).collect();
-    // The two-homogeneous start where it has fewer paths than the total degree.
-    let total = target.degrees.iter().try_fold(1usize, |p, &d| p.checked_mul(d.max(1) as usize));
-    let groups = target.groups.as_ref().filter(|(second, bidegrees)| {
-        let in_first = second.iter().filter(|s| !**s).count();
-        // Paths: the ways to choose one factor per equation, `in_first` of the first group.
-        let mut ways = vec![0usize; in_first + 1];
-        ways[0] = 1;
-        for b in bidegrees {
-            for k in (0..=in_first).rev() {
-                let from_first = if k > 0 { ways[k - 1].saturating_mul(b[0] as usize) } else { 0 };
-                ways[k] = ways[k].saturating_mul(b[1] as usize).saturating_add(from_first);
-            }
-        }
-        total.is_none_or(|t| ways[in_first] < t)
-    });
+    let (groups, count) = start_system(target);
+    if count > max_paths.min(MAX_PATHS) {
+        return None;
+    }
     let (factors, starts) =
         match groups {
             None => (None, total_degree_starts(target)?),

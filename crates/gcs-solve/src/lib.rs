@@ -183,7 +183,9 @@ pub struct Solution {
     /// side, and nodes of the core's DR-plan taken off their candidate 0 (the drawing's).
     pub backtracked: usize,
     /// Whether backtracking stopped at its bound with a step still without a candidate, or
-    /// the search over the core's combinations ([`Solution::combinations`]) stopped at
+    /// the search over the closed-form steps' sides stopped at its budget of placements
+    /// without one that holds, or the search over the core's combinations
+    /// ([`Solution::combinations`]) stopped at
     /// [`SEARCH_BOUND`] (or at its budget of homotopies) before one held with the drawing's
     /// chirality.
     pub bound_hit: bool,
@@ -212,6 +214,10 @@ pub struct Solution {
     /// Whether the enumeration stopped at [`SolveOptions::all`]'s limit (or at its budget of
     /// partial placements).
     pub truncated: bool,
+    /// Every bound that cut a search of this solve short, in the order of [`Bound`] — the
+    /// autosolve's (even when a later candidate then held: the one taken may not be the
+    /// first in the search's order) and the enumeration's; empty when none did.
+    pub bounds_hit: Vec<Bound>,
     /// With [`SolveOptions::all`]: for each realization of `solutions`, the core's candidate
     /// it is built on (its index among the core's real realizations; 0 where the core was not
     /// enumerated); `None` without it.
@@ -274,6 +280,9 @@ pub struct PlanStep {
     /// true for a closed-form step and for a core of one distance; false for a core solved
     /// numerically, where one solution is found from the drawing and others may exist.
     pub complete: bool,
+    /// When not `complete`: why, and how much may be missing (each reason that applies; empty
+    /// when `complete`).
+    pub shortfall: Vec<alternatives::Shortfall>,
     /// Whether the user fixed the choice ([`SolveOptions::choose`]).
     pub fixed: bool,
     /// For the core with [`SolveOptions::all`]: its homotopy's paths and what they ended at
@@ -354,7 +363,7 @@ fn unit(system: &System, c: ConstraintIdx, scale: f64) -> f64 {
 
 /// The residual of one constraint at the whole configuration `x`, relative (over its
 /// [`unit`]), as its largest value. `None` for a metric constraint without a value.
-fn relative(
+pub(crate) fn relative(
     system: &System,
     equations: &Equations<'_>,
     c: ConstraintIdx,
@@ -770,6 +779,59 @@ pub const SEARCH_HOMOTOPIES: usize = 64;
 /// visits for one realization of the core.
 const PLACEMENT_BOUND: usize = 1 << 12;
 
+/// A bound that cut a search of the solve short ([`Solution::bounds_hit`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Bound {
+    /// Backtracking over the closed-form steps from the drawing reversed [`BACKTRACK_BOUND`]
+    /// choices with a step still without a point.
+    Reversals,
+    /// The autosolve's depth-first search over the closed-form steps' sides placed
+    /// [`PLACEMENT_BOUND`] points for one realization of the core.
+    Placements,
+    /// The autosolve's search over the core tried [`SEARCH_BOUND`] combinations of its
+    /// nodes' candidates.
+    Combinations,
+    /// The autosolve's search over the core ran [`SEARCH_HOMOTOPIES`] node homotopies.
+    SearchHomotopies,
+    /// The enumeration of the core's DR-plan ran its budget of node homotopies
+    /// ([`nodes::MAX_ASSEMBLIES`]).
+    NodeHomotopies,
+    /// The enumeration found [`SolveOptions::all`]'s limit of realizations.
+    Solutions(usize),
+    /// The enumeration over the closed-form steps visited [`ENUMERATION_BUDGET`] partial
+    /// placements.
+    EnumerationPlacements,
+}
+
+impl Bound {
+    /// The report name: `reversals`, `placements`, `combinations`, `search-homotopies`,
+    /// `node-homotopies`, `max-solutions`, `enumeration-placements`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Bound::Reversals => "reversals",
+            Bound::Placements => "placements",
+            Bound::Combinations => "combinations",
+            Bound::SearchHomotopies => "search-homotopies",
+            Bound::NodeHomotopies => "node-homotopies",
+            Bound::Solutions(_) => "max-solutions",
+            Bound::EnumerationPlacements => "enumeration-placements",
+        }
+    }
+
+    /// The bound's value.
+    pub fn limit(self) -> usize {
+        match self {
+            Bound::Reversals => BACKTRACK_BOUND,
+            Bound::Placements => PLACEMENT_BOUND,
+            Bound::Combinations => SEARCH_BOUND,
+            Bound::SearchHomotopies => SEARCH_HOMOTOPIES,
+            Bound::NodeHomotopies => nodes::MAX_ASSEMBLIES,
+            Bound::Solutions(limit) => limit,
+            Bound::EnumerationPlacements => ENUMERATION_BUDGET,
+        }
+    }
+}
+
 /// The most unknowns of a cluster that the solver, failing to satisfy it from the drawing and
 /// from two other starts, reports as having no real solution.
 const SMALL_CLUSTER: usize = 24;
@@ -892,8 +954,17 @@ pub fn solve(
     } else {
         nodes::plan(system, &construction.core)
     };
+    let enumerable = no_solution.is_empty()
+        && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
+        && options.max_paths > 0;
     for node in &core_nodes {
         let complete = node.single_distance(system);
+        // Until the enumeration (if any) says otherwise: the drawing's solution only.
+        let shortfall = match () {
+            () if complete => Vec::new(),
+            () if options.max_paths > 0 && !enumerable => vec![alternatives::Shortfall::Unsolved],
+            () => vec![alternatives::Shortfall::NotSought],
+        };
         plan.push(PlanStep {
             entities: node.entities.clone(),
             constraints: node.constraints.clone(),
@@ -901,6 +972,7 @@ pub fn solve(
             candidates: 1,
             chosen: Some(0),
             complete,
+            shortfall,
             fixed: false,
             paths: None,
             children: node.children.clone(),
@@ -919,9 +991,8 @@ pub fn solve(
     // The core's realizations to build on, each with its node choices.
     let mut cores: Vec<(Vec<f64>, Vec<usize>)> = vec![(x.clone(), vec![0; core_nodes.len()])];
     let mut core_truncated = false;
-    let enumerable = no_solution.is_empty()
-        && core.worst(&x).is_none_or(|w| w.0 <= options.tolerance)
-        && options.max_paths > 0;
+    // The bounds that cut the enumeration short.
+    let mut enumeration_cut: Vec<Bound> = Vec::new();
     // The orientation conditions on the core's points: when the solved core breaks one, its
     // realizations are searched for one that keeps them all.
     let core_entities: std::collections::HashSet<EntityIdx> =
@@ -946,6 +1017,7 @@ pub fn solve(
             options.max_paths,
         );
         enumerator.orientations = core_orientations.clone();
+        enumerator.tolerance = options.tolerance;
         enumerator
     });
     // Each node's candidates at the choices `picks`, and the chosen ones, into the plan.
@@ -953,6 +1025,7 @@ pub fn solve(
         for (step, candidates) in plan.iter_mut().zip(found) {
             step.candidates = candidates.list.len();
             step.complete = candidates.complete;
+            step.shortfall = candidates.shortfall;
             step.paths = candidates.counts;
         }
         for ((step, forced), pick) in plan.iter_mut().zip(&node_forced).zip(picks) {
@@ -989,11 +1062,12 @@ pub fn solve(
             Err(_) => {}
         }
         if let Some(limit) = options.all {
-            let (found, cut) = enumerator.all(&node_forced, limit.max(1));
+            let (found, by) = enumerator.all(&node_forced, limit.max(1));
             if !found.is_empty() {
                 cores = found;
             }
-            core_truncated = cut;
+            core_truncated = !by.is_empty();
+            enumeration_cut.extend(by);
         }
     } else if let Some((step, candidate)) =
         node_forced.iter().enumerate().find_map(|(k, f)| f.map(|c| (k, c)))
@@ -1049,6 +1123,8 @@ pub fn solve(
             completes[d - 1].push(o);
         }
     }
+    // The bounds that cut a search short.
+    let cut_by: RefCell<std::collections::BTreeSet<Bound>> = RefCell::default();
     // Step `k` placed at `x`, flipped or not.
     let place_step = |k: usize, x: &[f64], flip: bool| {
         let step = &construction.steps[k];
@@ -1096,6 +1172,7 @@ pub fn solve(
                 .min_by(|&i, &j| confidence[i].total_cmp(&confidence[j]));
             let Some(j) = candidate else { break (false, false) };
             if reversed == BACKTRACK_BOUND {
+                cut_by.borrow_mut().insert(Bound::Reversals);
                 break (false, true);
             }
             flips[j] = true;
@@ -1191,6 +1268,9 @@ pub fn solve(
                 continue;
             }
             if next[depth] == 2 || budget == 0 {
+                if budget == 0 && next[..=depth].iter().any(|n| *n < 2) {
+                    cut_by.borrow_mut().insert(Bound::Placements);
+                }
                 if depth == 0 || budget == 0 {
                     return None;
                 }
@@ -1242,19 +1322,21 @@ pub fn solve(
         if let Some(enumerator) = search {
             let mut fallback: Option<(Vec<f64>, Vec<usize>, Vec<bool>)> = None;
             let bounds = (SEARCH_BOUND, options.max_paths / 4, SEARCH_HOMOTOPIES);
-            let (tried, cut) = enumerator.search(&node_forced, &x0, bounds, &mut |core, picks| {
-                if let Some((_, flips)) = settle(core) {
-                    best = Some((core.to_vec(), picks.clone(), flips));
-                    return true;
-                }
-                let (y, flips, _, _, placed) = place_all(core);
-                if fallback.is_none() && !ok && holds(&y, placed) {
-                    fallback = Some((core.to_vec(), picks.clone(), flips));
-                }
-                false
-            });
+            let (tried, cut, by) =
+                enumerator.search(&node_forced, &x0, bounds, &mut |core, picks| {
+                    if let Some((_, flips)) = settle(core) {
+                        best = Some((core.to_vec(), picks.clone(), flips));
+                        return true;
+                    }
+                    let (y, flips, _, _, placed) = place_all(core);
+                    if fallback.is_none() && !ok && holds(&y, placed) {
+                        fallback = Some((core.to_vec(), picks.clone(), flips));
+                    }
+                    false
+                });
             combinations = tried;
             search_cut = cut;
+            cut_by.borrow_mut().extend(by);
             best = best.or(fallback);
         }
         match best.and_then(|(_, picks, flips)| {
@@ -1272,7 +1354,9 @@ pub fn solve(
                 let reversed = flips.iter().filter(|f| **f).count();
                 (flips, reversed, false)
             }
-            None => (flips, reversed, bound_hit),
+            // (Nothing found: the placement budget, if it cut a search over the closed-form
+            // steps' sides, left it short too.)
+            None => (flips, reversed, bound_hit || cut_by.borrow().contains(&Bound::Placements)),
         }
     };
     let bound_hit = bound_hit || search_cut;
@@ -1327,6 +1411,7 @@ pub fn solve(
             candidates: placed.candidates,
             chosen: placed.chosen,
             complete: true,
+            shortfall: Vec::new(),
             fixed: forced[k].is_some(),
             paths: None,
             children: Vec::new(),
@@ -1385,7 +1470,7 @@ pub fn solve(
                 limit,
                 solutions: Vec::new(),
                 choices: Vec::new(),
-                truncated: false,
+                cut: None,
                 budget: ENUMERATION_BUDGET,
             };
             let mut core_choices = Vec::new();
@@ -1405,14 +1490,15 @@ pub fn solve(
                 );
                 core_choices.resize(found.solutions.len(), choices.last().copied().unwrap_or(0));
                 node_choices.resize(found.solutions.len(), choices.clone());
-                if found.truncated {
+                if found.cut.is_some() {
                     break;
                 }
             }
+            enumeration_cut.extend(found.cut);
             (
                 Some(found.solutions),
                 Some(found.choices),
-                found.truncated || core_truncated,
+                found.cut.is_some() || core_truncated,
                 Some(core_choices),
                 Some(node_choices),
             )
@@ -1429,7 +1515,12 @@ pub fn solve(
             moved = moved.max((x[col] - x0[col]).abs());
         }
     }
+    let mut bounds_hit: Vec<Bound> = cut_by.into_inner().into_iter().collect();
+    bounds_hit.extend(enumeration_cut);
+    bounds_hit.sort();
+    bounds_hit.dedup();
     Ok(Solution {
+        bounds_hit,
         status,
         worst: if converged { None } else { worst.map(|w| w.1) },
         max_residual,
@@ -1464,7 +1555,8 @@ struct Realizations {
     solutions: Vec<Vec<f64>>,
     /// Per realization, the candidate taken at each step.
     choices: Vec<Vec<usize>>,
-    truncated: bool,
+    /// The bound that stopped it, if one did.
+    cut: Option<Bound>,
     budget: usize,
 }
 
@@ -1490,7 +1582,7 @@ impl Realizations {
             let k = stack.len();
             if entering {
                 if self.budget == 0 {
-                    self.truncated = true;
+                    self.cut = Some(Bound::EnumerationPlacements);
                     return;
                 }
                 self.budget -= 1;
@@ -1501,7 +1593,7 @@ impl Realizations {
                     Loci::at(step, system, equations, layout, y).candidates(now).0
                 } else {
                     if self.solutions.len() == self.limit {
-                        self.truncated = true;
+                        self.cut = Some(Bound::Solutions(self.limit));
                         return;
                     }
                     self.solutions.push(y.to_vec());

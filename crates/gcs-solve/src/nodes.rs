@@ -23,14 +23,14 @@
 use gcs_jacobian::{Equations, Layout};
 use gcs_model::{ConstraintIdx, ConstraintKind, EntityIdx, System};
 
-use crate::alternatives::{self, PathCounts};
+use crate::alternatives::{self, PathCounts, Shortfall};
 
 /// The most points a core may have to be decomposed (every distance is tried).
 const MAX_POINTS: usize = 64;
 
 /// The most node homotopies one enumeration runs (each combination of the children's
 /// candidates is one).
-const MAX_ASSEMBLIES: usize = 4096;
+pub(crate) const MAX_ASSEMBLIES: usize = 4096;
 
 /// A node of the core's DR-plan.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -247,6 +247,8 @@ pub(crate) struct Candidates {
     pub placed: bool,
     /// Whether `list` is every real solution (that the orientation conditions allow).
     pub complete: bool,
+    /// Why it may not be (empty when `complete`).
+    pub shortfall: Vec<Shortfall>,
     /// Whether `list[0]` is the solved configuration (the drawing's candidate).
     pub drawn_first: bool,
 }
@@ -262,8 +264,14 @@ pub(crate) struct Enumerator<'a> {
     /// The model's size (what "the solved configuration" is compared at).
     pub scale: f64,
     pub max_paths: usize,
+    /// The solve's relative tolerance: what a real candidate must satisfy its constraints to
+    /// ([`crate::SolveOptions::tolerance`]).
+    pub tolerance: f64,
     /// Homotopies left to run.
     pub budget: std::cell::Cell<usize>,
+    /// The budget the current enumeration or search started with (what a node the budget did
+    /// not reach reports).
+    budget_size: std::cell::Cell<usize>,
     /// Each node's candidates, once computed for its children's choices (the choices of the
     /// nodes of its subtree below it, which come just before it in the plan).
     known: std::cell::RefCell<std::collections::HashMap<(usize, Choices), Candidates>>,
@@ -333,7 +341,9 @@ impl<'a> Enumerator<'a> {
             x,
             scale,
             max_paths,
+            tolerance: crate::SolveOptions::default().tolerance,
             budget,
+            budget_size: std::cell::Cell::new(MAX_ASSEMBLIES),
             known,
             first,
             wedges,
@@ -416,14 +426,17 @@ impl<'a> Enumerator<'a> {
                 list: vec![self.x.to_vec()],
                 placed: false,
                 complete: true,
+                shortfall: Vec::new(),
                 drawn_first: true,
             };
             return (c, vec![self.x.to_vec()]);
         }
         let (bodies, free) = self.bodies(k, children);
         // Each candidate as (record, configuration).
-        let found: Option<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>)> = if self.budget.get() == 0 {
-            None
+        let found: Result<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>), Shortfall> = if self.budget.get()
+            == 0
+        {
+            Err(Shortfall::Budget { homotopies: self.budget_size.get() })
         } else if !placed {
             self.budget.set(self.budget.get() - 1);
             alternatives::realizations(
@@ -432,20 +445,19 @@ impl<'a> Enumerator<'a> {
                 self.equations,
                 &node.constraints,
                 self.x,
-                self.max_paths.min(self.path_cap.get()),
+                (self.max_paths.min(self.path_cap.get()), self.tolerance),
                 seed,
             )
             .map(|(counts, list)| (counts, list.into_iter().map(|y| (y.clone(), y)).collect()))
         } else {
             self.budget.set(self.budget.get() - 1);
             alternatives::assemble(
-                self.layout,
-                self.equations,
+                (self.system, self.layout, self.equations),
                 &bodies,
                 &free,
                 &node.constraints,
                 self.x,
-                self.max_paths.min(self.path_cap.get()),
+                (self.max_paths.min(self.path_cap.get()), self.tolerance),
                 seed,
             )
             .map(|(counts, list)| {
@@ -468,9 +480,19 @@ impl<'a> Enumerator<'a> {
             };
             (record, self.x.to_vec())
         };
-        let (counts, mut pairs, mut complete) = match found {
-            Some((counts, pairs)) => (Some(counts), pairs, counts.failed == 0),
-            None => (None, Vec::new(), false),
+        let mut shortfall = Vec::new();
+        let (counts, mut pairs) = match found {
+            Ok((counts, pairs)) => {
+                if counts.failed > 0 {
+                    shortfall
+                        .push(Shortfall::Failed { failed: counts.failed, tracked: counts.paths });
+                }
+                (Some(counts), pairs)
+            }
+            Err(why) => {
+                shortfall.push(why);
+                (None, Vec::new())
+            }
         };
         if own {
             let near = pairs.first().is_some_and(|(_, f)| {
@@ -480,8 +502,10 @@ impl<'a> Enumerator<'a> {
                 pairs[0] = drawing();
             } else {
                 pairs.insert(0, drawing());
+                if counts.is_some() {
+                    shortfall.push(Shortfall::DrawingMissed);
+                }
             }
-            complete &= near;
         } else {
             // Autosolve by chirality (the ESM paper §3): the candidates whose turns agree with
             // the solved drawing's first, then by least displacement (the order they come in).
@@ -501,7 +525,8 @@ impl<'a> Enumerator<'a> {
             });
         }
         let (list, configs): (Vec<Vec<f64>>, Vec<Vec<f64>>) = pairs.into_iter().unzip();
-        (Candidates { counts, list, placed, complete, drawn_first: own }, configs)
+        let complete = shortfall.is_empty();
+        (Candidates { counts, list, placed, complete, shortfall, drawn_first: own }, configs)
     }
 
     /// The configuration at the choices `forced` (per node; `None`: candidate 0), with each
@@ -537,26 +562,29 @@ impl<'a> Enumerator<'a> {
     }
 
     /// Every combination of the nodes' candidates (each node at `forced` where given), at most
-    /// `limit`: the whole core's configurations with each node's candidate, and whether the
-    /// limit (or the budget of homotopies) cut the list short. Depth first, the first child
-    /// outermost, so that the limit stops the work too.
+    /// `limit`: the whole core's configurations with each node's candidate, and the bounds
+    /// that cut the list short (the limit, the budget of homotopies). Depth first, the first
+    /// child outermost, so that the limit stops the work too.
     pub(crate) fn all(
         &self,
         forced: &[Option<usize>],
         limit: usize,
-    ) -> (Vec<(Vec<f64>, Choices)>, bool) {
+    ) -> (Vec<(Vec<f64>, Choices)>, Vec<crate::Bound>) {
         let mut out = Vec::new();
-        let mut truncated = false;
-        let Some(root) = self.nodes.len().checked_sub(1) else { return (out, false) };
+        let mut cut = Vec::new();
+        let Some(root) = self.nodes.len().checked_sub(1) else { return (out, cut) };
         self.visit(root, forced, &mut |x, choices, _| {
             if out.len() == limit {
-                truncated = true;
+                cut.push(crate::Bound::Solutions(limit));
                 return false;
             }
             out.push((x, choices));
             true
         });
-        (out, truncated || self.budget.get() == 0)
+        if self.budget.get() == 0 {
+            cut.push(crate::Bound::NodeHomotopies);
+        }
+        (out, cut)
     }
 
     /// The autosolve's search (the ESM paper §3–4): the combinations of the nodes' candidates
@@ -565,9 +593,10 @@ impl<'a> Enumerator<'a> {
     /// chirality of `drawing` (how many wedges of the node's points turn against it, fewest
     /// first; ties in their own order, by least displacement), until `accept` returns true
     /// for one (the whole core's configuration and each node's candidate) or `limit` were
-    /// tried. Returns how many were tried and whether the search was cut short (by `limit`
+    /// tried. Returns how many were tried, whether the search was cut short (by `limit`
     /// or by the budget of homotopies, or by a node whose candidates are not all known: not
-    /// enumerated within `max_paths`, or some paths undecided) before it accepted one. Its
+    /// enumerated within `max_paths`, or some paths undecided) before it accepted one, and the
+    /// bounds that cut it (`limit`, `homotopies`). Its
     /// homotopies have at most `max_paths` paths (fewer than the enumeration's: the search
     /// runs in a plain solve) and it runs at most `homotopies` new ones.
     pub(crate) fn search(
@@ -576,12 +605,16 @@ impl<'a> Enumerator<'a> {
         drawing: &'a [f64],
         (limit, max_paths, homotopies): (usize, usize, usize),
         accept: &mut dyn FnMut(&[f64], &Choices) -> bool,
-    ) -> (usize, bool) {
-        let Some(root) = self.nodes.len().checked_sub(1) else { return (0, false) };
+    ) -> (usize, bool, Vec<crate::Bound>) {
+        let Some(root) = self.nodes.len().checked_sub(1) else { return (0, false, Vec::new()) };
         self.drawing.set(Some(drawing));
         self.path_cap.set(max_paths);
         let budget = self.budget.get();
         self.budget.set(budget.min(homotopies));
+        // (The search's own budget, unless less than it is left of the enumeration's.)
+        let searching = homotopies < budget;
+        let previous =
+            self.budget_size.replace(if searching { homotopies } else { MAX_ASSEMBLIES });
         let (mut tried, mut found, mut cut) = (0, false, false);
         self.visit(root, forced, &mut |x, choices, _| {
             if tried == limit {
@@ -594,12 +627,24 @@ impl<'a> Enumerator<'a> {
         });
         self.drawing.set(None);
         self.path_cap.set(usize::MAX);
+        self.budget_size.set(previous);
         let spent = budget.min(homotopies) - self.budget.get();
         let exhausted = self.budget.get() == 0;
         self.budget.set(budget - spent);
         // Nodes whose candidates may not be all: the search did not see every combination.
         let partial = self.known.borrow().values().any(|c| !c.complete);
-        (tried, !found && (cut || exhausted || partial))
+        let mut by = Vec::new();
+        if cut {
+            by.push(crate::Bound::Combinations);
+        }
+        if exhausted && !found {
+            by.push(if searching {
+                crate::Bound::SearchHomotopies
+            } else {
+                crate::Bound::NodeHomotopies
+            });
+        }
+        (tried, !found && (cut || exhausted || partial), by)
     }
 
     /// The order in which the search visits node `k`'s candidates with its children at
@@ -732,8 +777,8 @@ mod tests {
                 finite += counts.finite;
             }
         }
-        let (all, truncated) = e.all(&vec![None; nodes.len()], 100_000);
-        assert!(!truncated);
+        let (all, cut) = e.all(&vec![None; nodes.len()], 100_000);
+        assert!(cut.is_empty(), "{cut:?}");
         (finite, all.into_iter().map(|a| a.0).collect())
     }
 
@@ -765,7 +810,7 @@ mod tests {
         let eq = Equations::new(&s, &layout);
         let core: Vec<ConstraintIdx> = s.constraint_indices().collect();
         let (_, flat) =
-            alternatives::realizations(&s, &layout, &eq, &core, &x, MAX_PATHS, 7).unwrap();
+            alternatives::realizations(&s, &layout, &eq, &core, &x, (MAX_PATHS, 1e-9), 7).unwrap();
         assert_eq!(flat.len(), all.len());
         for y in &flat {
             assert!(

@@ -861,3 +861,102 @@ fn the_search_over_the_core_reports_its_bound() {
     assert!(sol.combinations >= 1 && sol.combinations <= gcs_solve::SEARCH_BOUND);
     assert!(sol.bound_hit);
 }
+
+/// A node whose candidates are not all its real solutions says why and how many may be
+/// missing (issue 14: "otherwise say how many paths failed"): two K3,3 joined by three
+/// distances, without `--all`, are solved from the drawing only; with fewer paths allowed than
+/// a K3,3's homotopy has (70), each K3,3 says so — its 70 paths bound the complex solutions
+/// not sought — while their assembly (6 paths) is enumerated in full.
+#[test]
+fn an_incomplete_node_says_why_and_how_much() {
+    use gcs_solve::alternatives::Shortfall;
+    let s = gcs_suite::load("data/paper/two_k33.ron");
+    let plain = run(&s);
+    let core = |sol: &gcs_solve::Solution| -> Vec<gcs_solve::PlanStep> {
+        (sol.plan.iter()).filter(|p| p.method == gcs_solve::Method::Newton).cloned().collect()
+    };
+    assert_eq!(core(&plain).len(), 3, "{:?}", plain.plan);
+    for p in core(&plain) {
+        assert!(!p.complete);
+        assert_eq!(p.shortfall, vec![Shortfall::NotSought]);
+    }
+    let few =
+        solve_with(&s, &SolveOptions { all: Some(8), max_paths: 32, ..SolveOptions::default() });
+    let nodes = core(&few);
+    for leaf in &nodes[..2] {
+        assert!(!leaf.complete && leaf.paths.is_none() && leaf.candidates == 1, "{leaf:?}");
+        assert_eq!(leaf.shortfall, vec![Shortfall::Paths { paths: 70, max: 32 }]);
+    }
+    let root = &nodes[2];
+    assert!(root.complete && root.shortfall.is_empty(), "{root:?}");
+    assert_eq!(root.paths.map(|c| c.paths), Some(6));
+    // With enough paths, every node is complete and nothing is said.
+    let all = solve_with(&s, &SolveOptions { all: Some(8), ..SolveOptions::default() });
+    assert!(core(&all).iter().all(|p| p.complete && p.shortfall.is_empty()), "{:?}", all.plan);
+    // A step in closed form is complete.
+    assert!(
+        all.plan.iter().filter(|p| p.method == gcs_solve::Method::ClosedForm).all(|p| p.complete)
+    );
+}
+
+/// A strip of `n` points, each after the first three placed by distances to the points one and
+/// three before it (so no three points but the first are joined pairwise: no triangle turns to
+/// prune a side), and a redundant distance between its ends of `closing` (`None`: as drawn).
+fn point_strip(n: usize, closing: Option<f64>) -> System {
+    let at = |i: usize| [i as f64 * 1.5, if i % 2 == 0 { 0.0 } else { 2.0 + 0.1 * i as f64 }];
+    let mut text = String::from("System(dim: 2, entities: [");
+    for i in 0..n {
+        let [x, y] = at(i);
+        text += &format!("Point(id: \"p{i}\", at: [{x}, {y}]),");
+    }
+    text += "], constraints: [";
+    let mut bar = |a: usize, b: usize, value: Option<f64>| {
+        let d = value.unwrap_or_else(|| {
+            let (p, q) = (at(a), at(b));
+            (p[0] - q[0]).hypot(p[1] - q[1])
+        });
+        text += &format!("Distance(id: \"d{a}_{b}\", a: \"p{a}\", b: \"p{b}\", value: {d}),");
+    };
+    bar(0, 1, None);
+    bar(1, 2, None);
+    bar(0, 2, None);
+    for k in 3..n {
+        bar(k - 1, k, None);
+        bar(k - 3, k, None);
+    }
+    bar(0, n - 1, closing);
+    text += "])";
+    model(&text)
+}
+
+/// Every bound that cuts a search short is in the report (issue 14's audit: the layer-1
+/// placement budget set no flag): in a strip of 16 points whose ends are to be 1,000 apart,
+/// no placement of the 13 closed-form steps' sides holds, and the autosolve's depth-first
+/// search over them (2^13 leaves) stops at its 4,096 placements.
+#[test]
+fn the_placement_bound_is_reported() {
+    use gcs_solve::Bound;
+    let s = point_strip(16, Some(1000.0));
+    let sol = run(&s);
+    assert_eq!(sol.status, Status::Inconsistent, "{:?}", sol.redundant);
+    assert!(sol.bounds_hit.contains(&Bound::Placements), "{:?}", sol.bounds_hit);
+    assert!(sol.bound_hit);
+    assert_eq!(Bound::Placements.limit(), 4096);
+    // At its drawn length the closing distance agrees: no search, no bound.
+    let sol = run(&point_strip(16, None));
+    assert_eq!(sol.status, Status::Solved);
+    assert!(sol.bounds_hit.is_empty() && !sol.bound_hit, "{:?}", sol.bounds_hit);
+}
+
+/// `--max-solutions` is a bound like the others: a chain of eight triangles has 2^8
+/// realizations; asked for 10, the enumeration says which bound stopped it.
+#[test]
+fn the_solutions_limit_is_a_bound_hit() {
+    use gcs_solve::Bound;
+    let s = gcs_model::generate::strip(5, 2);
+    let ten = solve_with(&s, &SolveOptions { all: Some(10), ..SolveOptions::default() });
+    assert!(ten.truncated);
+    assert_eq!(ten.bounds_hit, vec![Bound::Solutions(10)]);
+    let every = solve_with(&s, &SolveOptions { all: Some(1000), ..SolveOptions::default() });
+    assert!(!every.truncated && every.bounds_hit.is_empty(), "{:?}", every.bounds_hit);
+}
