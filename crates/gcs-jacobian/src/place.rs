@@ -544,16 +544,14 @@ pub(crate) fn place(
             return Ok(x);
         }
     }
-    // Modulo the prime, last of all: everything again, each run starting from the order the
-    // constraint counts allow (see [`counted_order`]). (Not over ℚ, where a failure costs a
+    // Modulo the prime, last of all: again, each run starting from the order the constraint
+    // counts allow (see [`counted_order`]). (Not over ℚ, where a failure costs a
     // modular witness only, and the work on big numbers is better spent there.)
     if first.is_err() && options.modular && !options.counted {
-        let again = PlaceOptions {
-            counted: true,
-            algebra_budget: std::rc::Rc::new(std::cell::Cell::new(2 * ALGEBRA_WORK)),
-            ..options.clone()
-        };
-        if let Ok(x) = place(system, layout, pref, scale, &again) {
+        // (Once, without the fallback's other order or the tosses, and with what is left of the
+        // polynomial solves' budget: a failure costs little more.)
+        let again = PlaceOptions { counted: true, ..options.clone() };
+        if let Ok(x) = place_with(system, layout, pref, scale, &again, false) {
             return Ok(x);
         }
     }
@@ -823,7 +821,13 @@ fn place_in(
     // learning from failures takes (a bounded number in all: each run learns a new grouping
     // or order, or the learning stops); modulo the prime, a run that failed for want of a
     // square root is also tried again with other random choices.
-    let (epochs, lessons) = if nent <= 2000 { (8, nent.clamp(4, 16)) } else { (2, 0) };
+    // (The counted order is one order: its runs vary only the ties among groups that may go
+    // at once, and two epochs of them do what eight would, at a quarter of a failure's cost.)
+    let (epochs, lessons) = match (nent <= 2000, options.counted) {
+        (true, false) => (8, nent.clamp(4, 16)),
+        (true, true) => (2, nent.clamp(4, 16)),
+        (false, _) => (2, 0),
+    };
     let turns = options.turns.as_ref().and_then(|_| crate::turns::Turns::new());
     let drawing: Vec<f64> = if turns.is_some() { drawing(system, layout) } else { Vec::new() };
     // Over ℚ, the largest height a failed run reached: another order is tried only while the
