@@ -6,8 +6,8 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use crate::Rat;
-use crate::gcd::gcd_int;
 use crate::error::{RankError, describe};
+use crate::gcd::gcd_int;
 
 /// A field with exact arithmetic, or `f64`.
 ///
