@@ -824,7 +824,7 @@ mod tests {
             let mut m = ONE_MONO;
             for e in &mut m {
                 let r = next();
-                *e = if r % 3 == 0 {
+                *e = if r.is_multiple_of(3) {
                     edge[(r >> 8) as usize % edge.len()]
                 } else {
                     (r >> 16) as u8 % 8
