@@ -2,12 +2,12 @@
 
 use num_bigint::BigInt;
 use num_complex::Complex64;
-use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use crate::Rat;
 use crate::error::{RankError, describe};
+use crate::gcd::gcd_int;
 
 /// A field with exact arithmetic, or `f64`.
 ///
@@ -145,8 +145,8 @@ pub(crate) fn reduced_product(a: &BigRational, b: &BigRational) -> (BigInt, BigI
     if ad.is_one() && bd.is_one() {
         return (an * bn, BigInt::one());
     }
-    let g1 = if bd.is_one() { BigInt::one() } else { an.gcd(bd) };
-    let g2 = if ad.is_one() { BigInt::one() } else { bn.gcd(ad) };
+    let g1 = if bd.is_one() { BigInt::one() } else { gcd_int(an, bd) };
+    let g2 = if ad.is_one() { BigInt::one() } else { gcd_int(bn, ad) };
     let divide = |x: &BigInt, g: &BigInt| if g.is_one() { x.clone() } else { x / g };
     let numer = divide(an, &g1) * divide(bn, &g2);
     let denom = divide(ad, &g2) * divide(bd, &g1);
@@ -162,16 +162,16 @@ pub(crate) fn subtract_fraction(x: &mut BigRational, p: BigInt, q: BigInt) {
         (n - p, d)
     } else if d == q {
         let t = n - p;
-        let g = t.gcd(&d);
+        let g = gcd_int(&t, &d);
         if g.is_one() { (t, d) } else { (t / &g, d / g) }
     } else {
-        let g = d.gcd(&q);
+        let g = gcd_int(&d, &q);
         if g.is_one() {
             (&n * &q - &p * &d, d * q)
         } else {
             let d1 = &d / &g;
             let t = &n * (&q / &g) - &p * &d1;
-            let g2 = t.gcd(&g);
+            let g2 = gcd_int(&t, &g);
             if g2.is_one() { (t, d1 * q) } else { (t / &g2, d1 * (q / g2)) }
         }
     };

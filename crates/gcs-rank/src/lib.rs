@@ -98,6 +98,7 @@ mod error;
 mod exact;
 mod field;
 mod float;
+mod gcd;
 mod lsq;
 mod modp;
 mod rank;

@@ -9,13 +9,13 @@ use std::iter::{Product, Sum};
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 use num_bigint::BigInt;
-use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{FromPrimitive, One, Signed, ToPrimitive, Zero};
 
 use crate::Field;
 use crate::error::RankError;
 use crate::field::{reduced_product, subtract_fraction};
+use crate::gcd::{gcd_int, gcd_u64, gcd_u128};
 
 /// An exact rational number with an allocation-free fast path for small values.
 ///
@@ -60,57 +60,6 @@ enum Repr {
     /// A value that is not representable as `Small`, in lowest terms with a positive
     /// denominator (the invariant of [`BigRational`]).
     Big(Box<BigRational>),
-}
-
-/// Binary gcd (Stein), after one remainder when the operands differ by 8 bits or more.
-///
-/// Measured on random operands, the binary loop is about twice as fast as Euclid's algorithm
-/// with `%` when the operands have similar sizes (6, 20 or 63 bits), but it removes only about
-/// one bit per iteration, so a small operand against a large one (a small denominator against
-/// an accumulated one) is 2–3 times faster with one remainder first.
-#[inline]
-fn gcd_u64(a: u64, b: u64) -> u64 {
-    if a == 0 || b == 0 {
-        return a | b;
-    }
-    let (mut a, mut b) = if a < b { (a, b) } else { (b, a) };
-    if a.leading_zeros() - b.leading_zeros() >= 8 {
-        b %= a;
-        if b == 0 {
-            return a;
-        }
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    b >>= b.trailing_zeros();
-    while a != b {
-        let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-        let d = hi - lo;
-        a = lo;
-        b = d >> d.trailing_zeros();
-    }
-    a << shift
-}
-
-/// Gcd on 128-bit words: one remainder brings a wide operand down to the other's size, then the
-/// 64-bit binary gcd finishes.
-#[inline]
-fn gcd_u128(a: u128, b: u128) -> u128 {
-    if (a | b) >> 64 == 0 {
-        return gcd_u64(a as u64, b as u64) as u128;
-    }
-    gcd_u128_wide(a, b)
-}
-
-#[inline(never)]
-fn gcd_u128_wide(mut a: u128, mut b: u128) -> u128 {
-    while b != 0 {
-        if (a | b) >> 64 == 0 {
-            return gcd_u64(a as u64, b as u64) as u128;
-        }
-        (a, b) = (b, a % b);
-    }
-    a
 }
 
 /// The fraction `num/den` (in lowest terms, `den > 0`) computed in 128-bit integers.
@@ -223,10 +172,10 @@ fn big_add(x: &Rat, y: &Rat, subtract: bool) -> Rat {
         if t.is_zero() {
             return Rat::ZERO;
         }
-        let g = t.gcd(b);
+        let g = gcd_int(&t, b);
         return from_lowest(div_by(&t, &g), div_by(b, &g));
     }
-    let g = b.gcd(d);
+    let g = gcd_int(b, d);
     if g.is_one() {
         // gcd(a·d ± c·b, b·d) = 1 when gcd(b, d) = 1.
         let t = combine(a * d, c * b);
@@ -240,7 +189,7 @@ fn big_add(x: &Rat, y: &Rat, subtract: bool) -> Rat {
     if t.is_zero() {
         return Rat::ZERO;
     }
-    let g2 = t.gcd(&g);
+    let g2 = gcd_int(&t, &g);
     from_lowest(div_by(&t, &g2), b1 * div_by(d, &g2))
 }
 
@@ -263,8 +212,8 @@ fn big_mul(x: &Rat, y: &Rat, divide: bool) -> Rat {
     if a.is_zero() || c.is_zero() {
         return Rat::ZERO;
     }
-    let g1 = a.gcd(&d);
-    let g2 = c.gcd(b);
+    let g1 = gcd_int(a, &d);
+    let g2 = gcd_int(&c, b);
     from_lowest(div_by(a, &g1) * div_by(&c, &g2), div_by(b, &g2) * div_by(&d, &g1))
 }
 
