@@ -840,7 +840,8 @@ fn place_in(
     } else {
         Vec::new()
     };
-    let fresh = || Learned { orders_first: fallback, before: counted.clone(), ..Learned::new(system) };
+    let fresh =
+        || Learned { orders_first: fallback, before: counted.clone(), ..Learned::new(system) };
     let mut learned = fresh();
     let (mut epoch, mut run, mut learnt, mut retries) = (0, 0usize, 0, 0);
     let mut failure = None;
@@ -1006,7 +1007,8 @@ fn counted_order(
                 .collect();
             gs.sort_unstable();
             gs.dedup();
-            let internal = matches!(system.constraint(c).signature, Signature::CoincidentPoints(..));
+            let internal =
+                matches!(system.constraint(c).signature, Signature::CoincidentPoints(..));
             if gs.len() > 1 || (gs.len() == 1 && !internal) {
                 groups_of.push((c, gs));
             }
