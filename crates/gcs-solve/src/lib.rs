@@ -54,6 +54,7 @@
 pub mod alternatives;
 pub mod closed;
 pub mod homotopy;
+mod newton;
 pub mod nodes;
 pub mod plan;
 
@@ -460,6 +461,9 @@ impl<'s> Problem<'s> {
         *self.full.borrow_mut() = x.to_vec();
         let mut y = self.gather(x);
         self.t.set(1.0);
+        if let Some(k) = self.direct(x, options) {
+            return (k, true);
+        }
         let offset = self.evaluate(&y).0;
         // A rough start (a residual beyond 1% of the model's size) takes `first_step` first.
         let rough = offset.iter().any(|v| !(v.abs() <= 1e-2));
@@ -500,6 +504,54 @@ impl<'s> Problem<'s> {
         self.t.set(1.0);
         self.scatter(&y, x);
         (iterations, converged)
+    }
+
+    /// Levenberg–Marquardt straight at the system from `x` ([`newton`]), before any
+    /// homotopy: `Some(steps)` with `x` solved when it converges and turns no triangle of
+    /// distances among the problem's points against their turn at `x`; `None` with `x`
+    /// untouched otherwise (the homotopy then starts from `x`).
+    fn direct(&self, x: &mut [f64], options: &SolveOptions) -> Option<usize> {
+        let y = self.gather(x);
+        let outcome = newton::levenberg_marquardt(
+            self,
+            &y,
+            &newton::NewtonOptions {
+                tolerance: options.tolerance * 1e-5,
+                max_iterations: options.max_iterations,
+                ..newton::NewtonOptions::default()
+            },
+        );
+        if !outcome.converged {
+            return None;
+        }
+        let mut solved = x.to_vec();
+        self.scatter(&outcome.x, &mut solved);
+        let triangles = self.triangles();
+        if triangles_against(self.layout, &triangles, x, &solved) > 0 {
+            return None;
+        }
+        x.copy_from_slice(&solved);
+        Some(outcome.iterations)
+    }
+
+    /// The triangles of distances among the problem's constraints.
+    fn triangles(&self) -> Vec<[EntityIdx; 3]> {
+        let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
+        let mut points: Vec<EntityIdx> = Vec::new();
+        let mut edges = Vec::new();
+        for &c in &self.constraints {
+            let Some([p, q]) = distance_points(self.system, c) else { continue };
+            let mut id = |e: EntityIdx| {
+                *index.entry(e).or_insert_with(|| {
+                    points.push(e);
+                    points.len() - 1
+                })
+            };
+            edges.push((id(p), id(q)));
+        }
+        (gcs_model::generate::triangles(points.len(), &edges).iter())
+            .map(|t| t.map(|i| points[i]))
+            .collect()
     }
 
     /// The largest relative residual of the constraints at `x`, with its constraint.
@@ -1705,6 +1757,21 @@ pub fn orientation_holds(layout: &Layout, x: &[f64], o: &gcs_model::Orientation)
     det * f64::from(o.sign) > 1e-12 * size
 }
 
+/// The two points of a plane `Distance` between points.
+fn distance_points(system: &System, c: ConstraintIdx) -> Option<[EntityIdx; 2]> {
+    let constraint = system.constraint(c);
+    if system.dim() != gcs_model::Dim::Two || constraint.kind != gcs_model::ConstraintKind::Distance
+    {
+        return None;
+    }
+    let base = system.constraint_base_entities(c);
+    let [p, q] = base.as_slice() else { return None };
+    if [p, q].iter().any(|e| system.entity(**e).kind() != gcs_model::EntityKind::Point) {
+        return None;
+    }
+    Some([*p, *q])
+}
+
 /// The triangles of a plane system's distances: three points joined pairwise by `Distance`s.
 fn distance_triangles(system: &System) -> Vec<[EntityIdx; 3]> {
     if system.dim() != gcs_model::Dim::Two {
@@ -1714,22 +1781,14 @@ fn distance_triangles(system: &System) -> Vec<[EntityIdx; 3]> {
     let mut points: Vec<EntityIdx> = Vec::new();
     let mut edges = Vec::new();
     for c in system.constraint_indices() {
-        let constraint = system.constraint(c);
-        if constraint.kind != gcs_model::ConstraintKind::Distance {
-            continue;
-        }
-        let base = system.constraint_base_entities(c);
-        let [p, q] = base.as_slice() else { continue };
-        if [p, q].iter().any(|e| system.entity(**e).kind() != gcs_model::EntityKind::Point) {
-            continue;
-        }
+        let Some([p, q]) = distance_points(system, c) else { continue };
         let mut id = |e: EntityIdx| {
             *index.entry(e).or_insert_with(|| {
                 points.push(e);
                 points.len() - 1
             })
         };
-        edges.push((id(*p), id(*q)));
+        edges.push((id(p), id(q)));
     }
     (gcs_model::generate::triangles(points.len(), &edges).iter())
         .map(|t| t.map(|i| points[i]))

@@ -208,6 +208,35 @@ fn jittered_laman_sketches_solve_keeping_their_orientation() {
     assert!(closed > 12, "closed-form steps taken: {closed}");
 }
 
+/// A large irreducible core from a rough drawing: 1000 points (about 600 of them in one
+/// rigid core that no closed-form step peels) drawn 5% off. Levenberg–Marquardt straight from
+/// the drawing with Nielsen's damping (the crate's `newton` module) solves it; before, the
+/// capped damped steps stopped at 8e-10 and the homotopy stalled at a fold: `failed`, the
+/// drawing returned with a residual of 0.75 (BENCHMARKS.md, "Large Laman cores").
+#[test]
+fn a_thousand_point_laman_core_solves_from_a_rough_drawing() {
+    let (s, _) = gcs_model::generate::laman_drawn(1000, 1, 0.05);
+    // The analysis as `examples/drawn.rs` runs it: no clusters, which the solve does not need.
+    let options = AnalysisOptions {
+        clusters: false,
+        sketch: false,
+        global_rigidity: false,
+        ..AnalysisOptions::default()
+    };
+    let analysis = analyze(&s, &options).unwrap();
+    let sol = solve(&s, &analysis, &SolveOptions::default()).unwrap();
+    assert_eq!(sol.status, Status::Solved, "worst {:?}", sol.worst);
+    assert!(sol.max_residual <= 1e-9, "{}", sol.max_residual);
+    let core = (sol.plan.iter().filter(|p| p.method == gcs_solve::Method::Newton))
+        .map(|p| p.entities.len())
+        .max();
+    assert!(core.is_some_and(|c| c > 500), "the core: {core:?} points");
+    let (kept, all) = gcs_solve::orientation_kept(&s, &sol.x);
+    assert!(all > 0 && kept == all, "{kept} of {all} triangles as drawn");
+    let [r] = sol.redundant.as_slice() else { panic!("{:?}", sol.redundant) };
+    assert!(!r.conflicting, "the redundant distance at its true value: {r:?}");
+}
+
 /// The redundant distance of a Laman sketch (`extra`) at its true value is consistent; 10% off
 /// it conflicts, off by 10% of its value, and its spanning group with it is a rigidity circuit
 /// (2·points − 2 distances on the points they join).
