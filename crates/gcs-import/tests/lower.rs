@@ -39,6 +39,7 @@ fn reason_class(reason: &str) -> String {
 }
 
 #[test]
+#[allow(clippy::print_stdout)] // the skipped items, listed on request (GCS_SHOW_SKIPPED)
 fn corpus_lowers_and_round_trips_through_ron() {
     let Some(corpus) = corpus() else { return };
     let mut per_format: BTreeMap<&str, (usize, usize)> = BTreeMap::new();
