@@ -41,7 +41,7 @@ fn text_reports_on_stdout_errors_on_stderr() {
         gcs(&["check", "crates/gcs-model/tests/good/zoo2d.ron", "crates/gcs-model/tests/bad"]);
     assert_eq!(code, 1);
     assert_eq!(stdout.lines().count(), 1);
-    assert!(stdout.contains("DOF 42 − DOC 40 = 2"), "{stdout}");
+    assert!(stdout.contains("DOF 54 − DOC 42 = 12"), "{stdout}");
     let bad = std::fs::read_dir(root().join("crates/gcs-model/tests/bad"))
         .unwrap()
         .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "ron"))
