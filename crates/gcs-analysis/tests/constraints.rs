@@ -283,7 +283,7 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                             )
                         }
                         EntityKind::BSpline => {
-                            let poles: Vec<String> = (0..4).map(|j| format!("{id}p{j}")).collect();
+                            let poles: Vec<String> = (0..5).map(|j| format!("{id}p{j}")).collect();
                             for (j, p) in poles.iter().enumerate() {
                                 b.point(p, Some(at(10 + j as i64))).unwrap();
                             }
@@ -309,7 +309,9 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
                 ) {
                     b.constraint(ConstraintKind::Concentric, "concentric", &args, None).unwrap();
                 }
-                b.constraint(kind, "c", &args, None).unwrap_or_else(|e| panic!("{e}"));
+                // (A spline point at the interior knot of the default knots 0⁴ 1 2⁴.)
+                let value = (kind == ConstraintKind::SplinePoint).then(|| int(1));
+                b.constraint(kind, "c", &args, value).unwrap_or_else(|e| panic!("{e}"));
                 let s = b.build();
                 let a = analyze(&s, &AnalysisOptions { clusters: false, ..Default::default() })
                     .unwrap_or_else(|e| panic!("{dim} {signature:?}: {e}"));
@@ -319,7 +321,7 @@ fn every_row_the_resolver_accepts_removes_its_doc() {
         }
     }
     // Every row of the table in docs/format.md, 2D and 3D (a new row adds to the count).
-    assert!(seen.len() >= 58, "{} rows: {seen:?}", seen.len());
+    assert!(seen.len() >= 60, "{} rows: {seen:?}", seen.len());
 }
 
 /// The equalities of angles and distances and the ratio of lengths are redundant exactly where

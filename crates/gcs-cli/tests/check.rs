@@ -22,11 +22,11 @@ fn json_lines_with_counts_and_failures_in_order() {
     assert_eq!(lines[0]["model"], "zoo 2d");
     // Every kind of the format: the arc's end points and its centre (named by a constraint)
     // count, with the implicit constraints holding them.
-    assert_eq!(lines[0]["entity_dof"], 42);
-    assert_eq!(lines[0]["constraint_doc"], 40);
-    assert_eq!(lines[0]["naive_dof"], 2);
+    assert_eq!(lines[0]["entity_dof"], 54);
+    assert_eq!(lines[0]["constraint_doc"], 42);
+    assert_eq!(lines[0]["naive_dof"], 12);
     assert_eq!(lines[1]["file"], "crates/gcs-model/tests/good/zoo3d.ron");
-    assert_eq!(lines[1]["naive_dof"], -6);
+    assert_eq!(lines[1]["naive_dof"], 6);
     assert_eq!(lines[2]["schema"], 1);
     assert_eq!(
         lines[2]["error"],
@@ -41,7 +41,7 @@ fn text_reports_on_stdout_errors_on_stderr() {
         gcs(&["check", "crates/gcs-model/tests/good/zoo2d.ron", "crates/gcs-model/tests/bad"]);
     assert_eq!(code, 1);
     assert_eq!(stdout.lines().count(), 1);
-    assert!(stdout.contains("DOF 42 − DOC 40 = 2"), "{stdout}");
+    assert!(stdout.contains("DOF 54 − DOC 42 = 12"), "{stdout}");
     let bad = std::fs::read_dir(root().join("crates/gcs-model/tests/bad"))
         .unwrap()
         .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "ron"))

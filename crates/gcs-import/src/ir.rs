@@ -239,6 +239,12 @@ pub enum Part {
     Pole(usize),
     /// A plane's origin point.
     Origin,
+    /// The tangent handle at a clamped spline's start: the first leg of its control polygon
+    /// (a segment from its start to its second control point), which gives the curve's
+    /// direction there (Onshape's `startDerivative`).
+    StartTangent,
+    /// The tangent handle at a clamped spline's end: the last leg of its control polygon.
+    EndTangent,
 }
 
 /// A reference from a constraint to an entity or one of its named points.
@@ -364,4 +370,7 @@ pub enum Kind {
     /// third (an instance of a linear pattern, one step along a direction segment from its
     /// start to its end).
     Translated,
+    /// `[point, spline]`: the point is the spline's point at the parameter `value`, one of its
+    /// knots (an interpolation point of a spline drawn through points).
+    SplinePoint,
 }

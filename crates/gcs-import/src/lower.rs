@@ -342,6 +342,12 @@ impl Lowering {
             }),
             (Part::Start, Shape::Spline { clamped: true, .. }) => Ok(point("start")),
             (Part::End, Shape::Spline { clamped: true, .. }) => Ok(point("end")),
+            (Part::StartTangent | Part::EndTangent, Shape::Spline { clamped: true, .. }) => {
+                let curve =
+                    Target { id: r.entity.clone(), class: Class::Curve, shape: Some(shape) };
+                let end = if r.part == Part::StartTangent { Part::Start } else { Part::End };
+                self.end_leg(curve, shape, end)
+            }
             (Part::Start | Part::End, Shape::Spline { clamped: false, .. }) => Err(format!(
                 "refers to the {} of {}, a B-spline that is not clamped: its end is no control \
                  point, and a point on the curve is not in the gcs model yet",
@@ -392,7 +398,7 @@ impl Lowering {
     fn joint(&self, a: &Target, b: &Target) -> Option<Target> {
         let ends = |t: &Target| -> Vec<String> {
             match t.shape {
-                Some(Shape::Segment | Shape::Arc) => {
+                Some(Shape::Segment | Shape::Arc | Shape::Spline { clamped: true, .. }) => {
                     vec![format!("{}.start", t.id), format!("{}.end", t.id)]
                 }
                 _ => Vec::new(),
@@ -515,6 +521,67 @@ impl Lowering {
                 (K::Concentric, "concentric", vec![&helper, round], None),
                 (touch, "on", vec![other, &helper], None),
                 (K::Distance, "", vec![&helper, round], Some(v)),
+            ],
+        )
+    }
+
+    /// The first segment's length minus the second's is `v` (SolveSpace's LENGTH_DIFFERENCE),
+    /// in the model's own terms: each segment is the radius of a helper circle about its
+    /// start through its end (`<id>#length1`, `<id>#length2`: `#center1`, `#on1`…), and a
+    /// third circle (`<id>#difference`) concentric with the longer one's and of the shorter
+    /// one's radius (`#concentric`, `#equal`) is `|v|` inside it: the distance between
+    /// concentric circles, the difference of their radii (the id). The helpers add no degree
+    /// of freedom and each equation is independent where the segments have length, so the rank
+    /// is that of the difference of the two lengths; everything stays polynomial and exact.
+    fn length_difference(&mut self, id: &str, t: &[Target], v: BigRational) -> Result<(), String> {
+        if self.as_reference {
+            return Err("a reference difference of lengths".into());
+        }
+        if self.builder.system().dim() != Dim::Two {
+            return Err(not_in_model("a difference of lengths in 3D (its helpers are circles)"));
+        }
+        // The longer segment first.
+        let (long, short, v) = if v < BigRational::from_integer(0.into()) {
+            (&t[1], &t[0], -v)
+        } else {
+            (&t[0], &t[1], v)
+        };
+        let length = |l: &Self, seg: &Target| -> Option<(Vec<BigRational>, BigRational)> {
+            let (a, b) = l.ends(seg);
+            let (p, q) = (l.point_f64(&a.id)?, l.point_f64(&b.id)?);
+            let r = BigRational::from_float((q[0] - p[0]).hypot(q[1] - p[1]))?;
+            Some((l.point_q(&a.id)?, snap(&r)))
+        };
+        let ((c1, r1), (c2, r2)) = length(self, long)
+            .zip(length(self, short))
+            .ok_or("a segment has no sketch position")?;
+        if r1 <= BigRational::from_integer(0.into()) || r2 <= BigRational::from_integer(0.into()) {
+            return Err("a segment of zero length in the drawing".into());
+        }
+        let circle = |l: &mut Self, name: &str, c: Vec<BigRational>, r: BigRational| {
+            let cid = format!("{id}#{name}");
+            l.builder.circle(&cid, Some(c), Some(r)).map_err(|e| e.to_string())?;
+            Ok::<Target, String>(Target {
+                id: cid,
+                class: Class::Round,
+                shape: Some(Shape::Circle),
+            })
+        };
+        let k1 = circle(self, "length1", c1.clone(), r1)?;
+        let k2 = circle(self, "length2", c2, r2.clone())?;
+        let kd = circle(self, "difference", c1, r2)?;
+        let (a1, b1) = self.ends(long);
+        let (a2, b2) = self.ends(short);
+        self.push_all(
+            id,
+            &[
+                (K::Distance, "", vec![&k1, &kd], Some(v)),
+                (K::Concentric, "center1", vec![&a1, &k1], None),
+                (K::Incident, "on1", vec![&b1, &k1], None),
+                (K::Concentric, "center2", vec![&a2, &k2], None),
+                (K::Incident, "on2", vec![&b2, &k2], None),
+                (K::Concentric, "concentric", vec![&kd, &k1], None),
+                (K::EqualRadius, "equal", vec![&kd, &k2], None),
             ],
         )
     }
@@ -860,7 +927,15 @@ impl Lowering {
                 Some(at) => self.push(K::TangentAt, &c.id, &[&t[0], &t[1], &at], None),
                 None => self.push(K::Tangent, &c.id, &[&t[0], &t[1]], None),
             },
+            (Kind::Tangent, [_, _]) if classes.contains(&Class::Curve) => {
+                self.tangent_to_spline(&c.id, t)
+            }
             (Kind::Tangent, _) => unsupported("a tangency other than line–circle or circle–circle"),
+            (Kind::SplinePoint, [P, Class::Curve]) => {
+                // (The knot exactly as the reader wrote it: not snapped.)
+                let knot = c.value.as_ref().map(|v| v.0.clone());
+                self.push(K::SplinePoint, &c.id, &[&t[0], &t[1]], knot)
+            }
             (Kind::TangentAtEnds | Kind::PerpendicularAtEnds, [P, P]) => self.at_ends(c, t),
             (Kind::Equal, [S, S]) => self.push(K::EqualLength, &c.id, &[&t[0], &t[1]], None),
             (Kind::Equal, [R, R]) => self.push(K::EqualRadius, &c.id, &[&t[0], &t[1]], None),
@@ -946,7 +1021,15 @@ impl Lowering {
                 self.push(K::LengthRatio, &c.id, &[&t[0], &t[1]], Some(abs(value()?)))
             }
             (Kind::LengthRatio, _) => unsupported("a ratio of lengths of arcs or infinite lines"),
-            (Kind::LengthDifference, _) => unsupported("a difference of lengths"),
+            (Kind::LengthDifference, [S, S])
+                if t.iter().all(|x| x.shape == Some(Shape::Segment)) =>
+            {
+                let v = value()?;
+                self.length_difference(&c.id, t, v)
+            }
+            (Kind::LengthDifference, _) => {
+                unsupported("a difference of lengths of arcs or infinite lines")
+            }
             (Kind::EqualLineArcLength, _) => unsupported("a segment as long as an arc"),
             (Kind::EqualPointLineDistances, [P, S, P, S]) => {
                 self.push(K::EqualDistance, &c.id, &[&t[0], &t[1], &t[2], &t[3]], None)
@@ -962,16 +1045,56 @@ impl Lowering {
             (Kind::EqualGaps, _) => {
                 unsupported("equal gaps other than of circles, points and lines")
             }
-            // (The model's EqualDistance states a length equal to a point–line distance too;
-            // lowered, it leaves loops beside other equal lengths that the placement does not
-            // close yet — SolveSpace's `mapping2d` test file —, so it stays skipped.)
+            (Kind::EqualLengthPointLineDistance, [S, P, S])
+                if t[0].shape == Some(Shape::Segment) =>
+            {
+                let (a, b) = self.ends(&t[0]);
+                self.push(K::EqualDistance, &c.id, &[&a, &b, &t[1], &t[2]], None)
+            }
             (Kind::EqualLengthPointLineDistance, _) => {
-                unsupported("a length equal to a point–line distance")
+                unsupported("a length of an infinite line equal to a point–line distance")
             }
             (Kind::ArcLength, _) => unsupported("an arc length"),
             (kind, _) => Err(format!(
                 "{kind:?} on {} is not a combination the gcs model has",
                 classes.iter().map(|c| class_name(*c)).collect::<Vec<_>>().join(", ")
+            )),
+        }
+    }
+
+    /// A tangency of a clamped B-spline and a curve the sketch joins at one of the spline's
+    /// ends: the leg of its control polygon there is tangent to the other curve at that point
+    /// (parallel to a line or to another spline's leg, `TangentAt` a circle or arc). A
+    /// tangency elsewhere along the spline is not in the model (no point on a spline).
+    fn tangent_to_spline(&mut self, id: &str, t: &[Target]) -> Result<(), String> {
+        let elsewhere = || not_in_model("a tangency to a B-spline away from its end points");
+        let at = self.joint(&t[0], &t[1]).ok_or_else(elsewhere)?;
+        let mut sides = Vec::new();
+        for x in t {
+            let Some(shape @ Shape::Spline { .. }) = x.shape else {
+                sides.push(x.clone());
+                continue;
+            };
+            let joint = self.root(&at.id);
+            let part = if self.root(&format!("{}.start", x.id)) == joint {
+                Part::Start
+            } else if self.root(&format!("{}.end", x.id)) == joint {
+                Part::End
+            } else {
+                return Err(elsewhere());
+            };
+            sides.push(self.end_leg(x.clone(), shape, part)?);
+        }
+        match (sides[0].class, sides[1].class) {
+            (Class::Straight, Class::Straight) => {
+                self.push(K::Parallel, id, &[&sides[0], &sides[1]], None)
+            }
+            (Class::Straight, Class::Round) | (Class::Round, Class::Straight) => {
+                self.push(K::TangentAt, id, &[&sides[0], &sides[1], &at], None)
+            }
+            _ => Err(not_in_model(
+                "a tangency of a B-spline to a curve other than a line, \
+                                   circle, arc or spline",
             )),
         }
     }
@@ -1065,6 +1188,8 @@ fn part_name(part: Part) -> String {
         Part::MinorStart | Part::MinorEnd => "minor axis end".to_owned(),
         Part::Pole(i) => format!("control point {i}"),
         Part::Origin => "origin".to_owned(),
+        Part::StartTangent => "start tangent".to_owned(),
+        Part::EndTangent => "end tangent".to_owned(),
     }
 }
 

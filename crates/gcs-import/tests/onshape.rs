@@ -101,17 +101,18 @@ fn every_sample_file_reads_with_the_expected_totals() {
     }
     let count = |f: fn(&Sketch) -> usize| sketches.iter().map(f).sum::<usize>();
     assert_eq!(sketches.len(), 237);
-    // 2,481 entities in the files, of which 10 are skipped (interpolated splines) and 5 are
-    // boxes (4 text boxes, 1 image box) read as 5 entities each (4 edges, a centre): 2,491. The
-    // 15 zero-length lines are among them, as points.
-    assert_eq!(count(|s| s.entities.len()), 2491);
+    // 2,481 entities in the files, of which 4 are skipped (trimmed interpolated splines), 6
+    // interpolated splines read as the spline and its 24 inner interpolation points, and 5
+    // boxes (4 text boxes, 1 image box) read as 5 entities each (4 edges, a centre):
+    // 2,481 − 4 + 24 + 20 = 2,521. The 15 zero-length lines are among them, as points.
+    assert_eq!(count(|s| s.entities.len()), 2521);
     assert_eq!(
         count(|s| s
             .entities
             .iter()
             .filter(|e| matches!(e.geometry, Geometry::Point { .. }))
             .count()),
-        247 + 15 + 5
+        247 + 15 + 5 + 24
     );
     // 5,531 constraints in the files: 540 skipped, 43 mirrors of segments said by the mirrors
     // of their end points (notes), 9 patterns read as 301 moves of points
@@ -119,11 +120,12 @@ fn every_sample_file_reads_with_the_expected_totals() {
     // equalities), 40 offsets read as 55 parallelisms or concentricities of their pairs of
     // curves (`#master`, once per operation, and `#second`) and, for 37 of them, equal gaps (the
     // id: 28 `EqualPointLineDistances` of lines, 9 `EqualGaps` where a pair is of circles),
-    // 4,899 others read; 15 of these become two (two coincident circles, 14 mirrored circles:
-    // the second is `<id>#equal`); the 5 boxes add 9 constraints each (`<id>#corner1`…):
-    // 4,899 + 15 + 301 + 9 + 55 + 37 + 45 = 5,361.
+    // 4,913 others read; 15 of these become two (two coincident circles, 14 mirrored circles:
+    // the second is `<id>#equal`); the 5 boxes add 9 constraints each (`<id>#corner1`…), the 6
+    // interpolated splines read hold their 24 inner points (`<id>#through<k>`):
+    // 4,913 + 15 + 301 + 9 + 55 + 37 + 45 + 24 = 5,399.
     assert_eq!(source_constraints, 5531);
-    assert_eq!(count(|s| s.constraints.len()), 5361);
+    assert_eq!(count(|s| s.constraints.len()), 5399);
     let relations = count(|s| {
         s.constraints
             .iter()
@@ -137,21 +139,23 @@ fn every_sample_file_reads_with_the_expected_totals() {
         s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
     });
     assert_eq!(moves, 301);
-    assert_eq!(count(|s| s.skipped.len()), 10 + 540);
-    assert_eq!(count(|s| s.notes.len()), 43);
-    assert!(
-        sketches
-            .iter()
-            .flat_map(|s| &s.notes)
-            .all(|n| n.reason.starts_with("MIRROR of two segments"))
-    );
+    // Skipped: 4 trimmed interpolated splines and 516 constraints; notes: the 43 mirrors and
+    // 10 coincidences of an interpolated spline's end with its end interpolation point (one
+    // point here).
+    assert_eq!(count(|s| s.skipped.len()), 4 + 516);
+    assert_eq!(count(|s| s.notes.len()), 43 + 10);
+    let notes = |prefix: &str| {
+        sketches.iter().flat_map(|s| &s.notes).filter(|n| n.reason.starts_with(prefix)).count()
+    };
+    assert_eq!(notes("MIRROR of two segments"), 43);
+    assert_eq!(notes("COINCIDENT of two names of one point"), 10);
     assert_eq!(
-        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 540 + 43 + 9 + 3,
+        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 516 + 53 + 9 + 3,
         5531
     );
     // Sketches with nothing skipped: most others reference the sketch origin or model edges,
     // which SketchGraphs' files do not carry.
-    assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 34);
+    assert_eq!(sketches.iter().filter(|s| s.skipped.is_empty()).count(), 36);
     let mut reasons = BTreeMap::new();
     for s in &sketches {
         for k in &s.skipped {
@@ -160,11 +164,11 @@ fn every_sample_file_reads_with_the_expected_totals() {
     }
     let expected = BTreeMap::from([
         ("external geometry", 426),
-        ("reference to a skipped entity", 42),
+        ("reference to a skipped entity", 18),
         ("zero-length line used as a line", 52),
         ("offset", 3),
         ("circular pattern", 2),
-        ("interpolated spline", 10),
+        ("interpolated spline", 4),
         ("combination not expressible", 8),
         ("silhouette projection", 4),
         ("expression with a variable", 3),
@@ -176,7 +180,8 @@ fn every_sample_file_reads_with_the_expected_totals() {
             *kinds.entry(format!("{:?}", c.kind)).or_insert(0) += 1;
         }
     }
-    assert_eq!(kinds["Coincident"], 1945);
+    assert_eq!(kinds["Coincident"], 1957);
+    assert_eq!(kinds["SplinePoint"], 24);
     assert_eq!(kinds["Symmetric"], 210);
     assert_eq!((kinds["Rotated"], kinds["Translated"]), (216, 85));
     assert_eq!(kinds["EqualPointLineDistances"], 28);
@@ -254,13 +259,13 @@ fn the_sample_drawings_satisfy_the_constraints_read() {
     }
     let expected = [
         ("Angle", 18),
-        ("Coincident", 1945),
+        ("Coincident", 1957),
         ("Distance", 27),
         ("DistanceX", 49),
         ("DistanceY", 29),
         ("Horizontal", 71),
         ("Symmetric", 98),
-        ("Vertical", 50),
+        ("Vertical", 51),
     ];
     assert_eq!(checked, expected.into_iter().map(|(k, v)| (k.to_owned(), v)).collect());
 }
@@ -815,4 +820,134 @@ fn an_unknown_reference_is_skipped_and_the_rest_read() {
             ("c2", "a second constraint with the id `c2` (features[0].constraints[3])"),
         ]
     );
+}
+
+/// Interpolated splines: the B-spline Onshape builds through the points (centripetal knots,
+/// the handles as the second and last-but-one control points) passes through every
+/// interpolation point at its knot, on every spline of SketchGraphs' sample that is read; the
+/// sample's handles are those of that form, which is what makes it Onshape's.
+#[test]
+fn interpolated_splines_pass_through_their_points_at_their_knots() {
+    use num_traits::ToPrimitive;
+    let Some(files) = common::onshape_files() else { return };
+    let mut splines = 0;
+    let mut through = 0;
+    for (path, bytes) in &files {
+        let json: serde_json::Value = serde_json::from_slice(bytes).expect("JSON");
+        for (s, feature) in gcs_import::onshape::read(path, bytes)
+            .expect("reads")
+            .iter()
+            .zip(json.as_array().expect("features"))
+        {
+            for e in &s.entities {
+                let Geometry::BSpline { degree, poles, knots, periodic, .. } = &e.geometry else {
+                    continue;
+                };
+                let source = feature["entities"]
+                    .as_array()
+                    .expect("entities")
+                    .iter()
+                    .find(|x| x["message"]["entityId"] == e.id.as_str())
+                    .expect("the entity");
+                let g = &source["message"]["geometry"]["message"];
+                if source["message"]["geometry"]["typeName"] != "BTCurveGeometryInterpolatedSpline"
+                {
+                    continue;
+                }
+                splines += 1;
+                let q: Vec<f64> = g["interpolationPoints"]
+                    .as_array()
+                    .expect("points")
+                    .iter()
+                    .map(|x| x.as_f64().expect("a number") * 1000.0)
+                    .collect();
+                let m = q.len() / 2;
+                assert_eq!(*degree, 3);
+                assert_eq!(poles.len(), if *periodic { m } else { m + 2 }, "{}", e.id);
+                if !*periodic {
+                    let handle = |x: &str, y: &str| {
+                        [g[x].as_f64().unwrap() * 1000.0, g[y].as_f64().unwrap() * 1000.0]
+                    };
+                    assert!(close(&poles[1], handle("startHandleX", "startHandleY")));
+                    assert!(close(&poles[m], handle("endHandleX", "endHandleY")));
+                    assert!(
+                        close(&poles[0], [q[0], q[1]])
+                            && close(&poles[m + 1], [q[2 * m - 2], q[2 * m - 1]])
+                    );
+                }
+                let mut flat = Vec::new();
+                for (k, mult) in knots {
+                    flat.extend(std::iter::repeat_n(k.0.clone(), *mult as usize));
+                }
+                // Every interpolation point at its knot: the ends (open) are the end control
+                // points, the others are held there by `SplinePoint`s whose value is the knot.
+                let inner: Vec<usize> =
+                    if *periodic { (0..m).collect() } else { (1..m - 1).collect() };
+                for k in inner {
+                    let c = constraint(s, &format!("{}#through{k}", e.id));
+                    assert_eq!(c.kind, Kind::SplinePoint);
+                    assert_eq!(c.refs, [whole(&format!("{}.{k}.internal", e.id)), whole(&e.id)]);
+                    let t = &c.value.as_ref().expect("a parameter").0;
+                    let basis = gcs_model::spline::basis(3, poles.len(), &flat, &[], *periodic, t)
+                        .expect("a knot in range");
+                    let x: Vec<f64> = (0..2)
+                        .map(|d| {
+                            basis
+                                .iter()
+                                .map(|(i, b)| b.to_f64().unwrap() * poles[*i][d].to_f64())
+                                .sum()
+                        })
+                        .collect();
+                    assert!(
+                        (x[0] - q[2 * k]).abs() < 1e-9 && (x[1] - q[2 * k + 1]).abs() < 1e-9,
+                        "{} point {k}: {x:?} vs {:?}",
+                        e.id,
+                        &q[2 * k..2 * k + 2]
+                    );
+                    through += 1;
+                }
+            }
+        }
+    }
+    // 10 interpolated splines in the sample, 4 of them trimmed (skipped); 24 inner points.
+    assert_eq!((splines, through), (6, 24));
+}
+
+/// An interpolated spline on its own and joined to a line: its start and end are its first
+/// and last interpolation points (Onshape's coincidence of the two names is a note), its end
+/// derivatives the legs of its control polygon, a tangency at its joined start the leg
+/// parallel to the line; a periodic one has all its points on it. Degrees of freedom: an open
+/// spline through 5 points with free handles 2·5 + 4, a periodic one through 4 points 2·4.
+#[test]
+fn interpolated_splines_lower_and_count_their_points_and_handles() {
+    use num_traits::ToPrimitive;
+    let sketches = data("interpolated.json");
+    let s = &sketches[0];
+    assert!(s.skipped.is_empty(), "{:?}", s.skipped);
+    assert_eq!(s.notes.len(), 1);
+    assert_eq!(s.notes[0].item, "start");
+    let handle = constraint(s, "handle");
+    assert_eq!(
+        (handle.kind, handle.refs.clone()),
+        (Kind::Horizontal, vec![part("s", Part::StartTangent)])
+    );
+    let l = gcs_import::lower(s);
+    assert!(l.complete(), "{:?}", l.skipped);
+    let sys = &l.system;
+    let kind = |id: &str| sys.constraint(sys.constraint_by_id(id).expect(id)).kind;
+    assert_eq!(kind("tangent"), gcs_model::ConstraintKind::Parallel);
+    assert_eq!(kind("s#through2"), gcs_model::ConstraintKind::SplinePoint);
+    assert_eq!(kind("c#through0"), gcs_model::ConstraintKind::SplinePoint);
+    let a = gcs_analysis::analyze(sys, &Default::default()).expect("analysed");
+    assert!(a.redundant.is_empty(), "{:?}", a.redundant);
+    // s 14, c 8, l 4, p 2; join 2, tangent 1, on 2, handle 1, ring 1.
+    assert_eq!(a.dof + a.trivial_motions, 14 + 8 + 4 + 2 - 7);
+    // The control points the reader solved make the curve pass through the drawn points.
+    let point = |id: &str| match &sys.entity(sys.entity_by_id(id).unwrap()).geometry {
+        gcs_model::entity::Geometry::Point { at: Some(at) } => {
+            at.iter().map(|x| x.to_f64().unwrap()).collect::<Vec<_>>()
+        }
+        other => panic!("{other:?}"),
+    };
+    assert!((point("s.2.internal")[1] - 274.1506099700928).abs() < 1e-9);
 }

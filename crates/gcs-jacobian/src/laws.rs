@@ -330,6 +330,21 @@ pub(crate) fn law<F: Field>(
                 Law::exact(vec![if variant == 0 { &x - &y } else { &x + &y }]).variants(2)
             }
         }
+        S::SplinePoint { point, spline, knot } => {
+            // x − Σ cᵢ Pᵢ = 0: the curve's point at the knot, an affine combination of the
+            // control points with exact coefficients (`gcs_model::spline::basis`). Linear.
+            // (A coefficient whose denominator the field's prime divides, which knots of a
+            // few digits never have, is taken as 0 there: the exact rank is certified against
+            // the rational rows.)
+            let mut rows = l.point(point);
+            for (pole, c) in spline_basis(l.system(), spline, knot) {
+                let c = Dual::constant(F::from_rational(&c).unwrap_or_else(|_| F::zero()));
+                for (r, y) in rows.iter_mut().zip(l.point(pole)) {
+                    *r = &*r - &(&c * &y);
+                }
+            }
+            Law::exact(rows)
+        }
         S::EqualDistance(p, q) => {
             // d₁² = n₁/m₁ and d₂² = n₂/m₂: n₁ m₂ − n₂ m₁ = 0, a difference of squares (a
             // point–point squared distance times a squared normal is |(u·n, u×n)|², Lagrange's
@@ -372,6 +387,7 @@ pub fn residual_degree(sig: Signature) -> i32 {
     use Signature as S;
     match sig {
         S::EqualAngle { .. } => 4,
+        S::SplinePoint { .. } => 1,
         S::EqualDistance(p, q) => {
             2 + 2 * [p, q].iter().filter(|g| matches!(g, Gap::PointLine { .. })).count() as i32
         }
@@ -405,6 +421,30 @@ pub fn residual_degree(sig: Signature) -> i32 {
         | S::Vertical(_)
         | S::Fix(_) => 2,
     }
+}
+
+/// The control points of B-spline `spline` and their coefficients at its knot `knot` (its
+/// index in the flat knot vector), exactly; empty when the model's data make no curve (which
+/// the builder has refused already).
+pub(crate) fn spline_basis(
+    system: &gcs_model::System,
+    spline: EntityIdx,
+    knot: u32,
+) -> Vec<(EntityIdx, BigRational)> {
+    let gcs_model::Geometry::BSpline { degree, poles, knots, weights, periodic } =
+        &system.entity(spline).geometry
+    else {
+        return Vec::new();
+    };
+    let flat =
+        gcs_model::spline::knots_or_default(*degree, poles.len(), knots.as_deref(), *periodic);
+    let Some(u) = flat.get(knot as usize) else { return Vec::new() };
+    let w = weights.as_deref().unwrap_or(&[]);
+    gcs_model::spline::basis(*degree, poles.len(), &flat, w, *periodic, u)
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(i, c)| (poles[i], c))
+        .collect()
 }
 
 /// `Fix`: every coordinate of the entity (or of its parts) equal to its sketch, homogeneous

@@ -404,6 +404,7 @@ fn line_reads(signature: Signature) -> Vec<(EntityIdx, LineRead)> {
         | S::TangentAtCircleCircle { .. }
         | S::EqualAngle { .. }
         | S::EqualDistance(..)
+        | S::SplinePoint { .. }
         | S::Fix(_) => Vec::new(),
     }
 }

@@ -262,6 +262,14 @@ pub enum ModelErrorKind {
         /// What is wrong.
         why: String,
     },
+    /// A `SplinePoint` whose value is missing or is not one of its spline's knots.
+    #[error("constraint \"{id}\": field value: {why}")]
+    SplineParameter {
+        /// The constraint id.
+        id: String,
+        /// What is wrong.
+        why: String,
+    },
     /// A `Fix` on an entity without a sketch position.
     #[error("constraint \"{id}\": Fix on \"{entity}\", which has no sketch position to pin it at")]
     FixWithoutPosition {
@@ -288,6 +296,7 @@ impl ModelErrorKind {
             | ModelErrorKind::FixWithoutPosition { id, .. }
             | ModelErrorKind::Orientation { id, .. }
             | ModelErrorKind::NotADimension { id, .. }
+            | ModelErrorKind::SplineParameter { id, .. }
             | ModelErrorKind::Group { id, .. } => Some(id),
             ModelErrorKind::UnknownId { owner, .. }
             | ModelErrorKind::NotAnEntity { owner, .. }
@@ -315,6 +324,7 @@ impl ModelErrorKind {
             ModelErrorKind::RepeatedEntity { second, .. } => Some(second),
             ModelErrorKind::Group { .. } => Some("entities"),
             ModelErrorKind::NotADimension { .. } => Some("reference"),
+            ModelErrorKind::SplineParameter { .. } => Some("value"),
             ModelErrorKind::UnsupportedDim(_) => Some("dim"),
             ModelErrorKind::DuplicateId { .. } => Some("id"),
             ModelErrorKind::Degenerate { field, .. } => *field,

@@ -115,11 +115,15 @@ pub enum ConstraintKind {
     /// The distance between the first two entities equals the distance between the last two;
     /// each pair is two points or a point and a line (2D).
     EqualDistance,
+    /// A point of a B-spline at one of its knots: the curve's point at that parameter (its
+    /// `value`), a fixed affine combination of the control points (an interpolation point of
+    /// a spline drawn through points).
+    SplinePoint,
 }
 
 impl ConstraintKind {
     /// Every constraint kind, in the order of the format's table.
-    pub const ALL: [ConstraintKind; 22] = [
+    pub const ALL: [ConstraintKind; 23] = [
         ConstraintKind::Coincident,
         ConstraintKind::Distance,
         ConstraintKind::Angle,
@@ -142,6 +146,7 @@ impl ConstraintKind {
         ConstraintKind::LengthRatio,
         ConstraintKind::EqualAngle,
         ConstraintKind::EqualDistance,
+        ConstraintKind::SplinePoint,
     ];
 
     /// The variant names used in model files, in the order of [`ConstraintKind::ALL`].
@@ -180,6 +185,7 @@ impl ConstraintKind {
             ConstraintKind::LengthRatio => "LengthRatio",
             ConstraintKind::EqualAngle => "EqualAngle",
             ConstraintKind::EqualDistance => "EqualDistance",
+            ConstraintKind::SplinePoint => "SplinePoint",
         }
     }
 
@@ -202,7 +208,8 @@ impl ConstraintKind {
             | K::EqualRadius
             | K::TangentAt
             | K::EqualAngle
-            | K::EqualDistance => Role::Relation,
+            | K::EqualDistance
+            | K::SplinePoint => Role::Relation,
         }
     }
 
@@ -217,8 +224,15 @@ impl ConstraintKind {
         matches!(self.role(), Role::Absolute | Role::AbsoluteMetric)
     }
 
+    /// Whether the constraint carries a number (`value`): a dimension's value for a metric
+    /// kind, the curve parameter of a `SplinePoint` (a constant of the relation, not a
+    /// dimension).
+    pub fn has_value(self) -> bool {
+        self.is_metric() || self == ConstraintKind::SplinePoint
+    }
+
     /// The fields of the constraint's RON form (format §1), in order: `id`, the entity fields,
-    /// and `value` for a metric kind.
+    /// and `value` for a kind that has one ([`ConstraintKind::has_value`]).
     pub fn ron_fields(self) -> &'static [&'static str] {
         use ConstraintKind as K;
         match self {
@@ -230,6 +244,7 @@ impl ConstraintKind {
             K::Radius => &["id", "a", "value"],
             K::Horizontal | K::Vertical | K::Fix => &["id", "a"],
             K::Midpoint => &["id", "point", "segment"],
+            K::SplinePoint => &["id", "point", "spline", "value"],
             K::Symmetric => &["id", "a", "b", "axis"],
             K::Coincident
             | K::Parallel
@@ -251,7 +266,7 @@ impl ConstraintKind {
     /// The names of the entity fields the constraint takes, in order.
     pub fn fields(self) -> &'static [&'static str] {
         let all = self.ron_fields();
-        &all[1..all.len() - usize::from(self.is_metric())]
+        &all[1..all.len() - usize::from(self.has_value())]
     }
 }
 

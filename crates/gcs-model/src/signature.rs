@@ -289,6 +289,17 @@ pub enum Signature {
     },
     /// Two equal distances (2D).
     EqualDistance(Gap, Gap),
+    /// A point of a B-spline at one of its knots (DOC: the dimension): the curve's point there,
+    /// a fixed affine combination of the control points.
+    SplinePoint {
+        /// The point.
+        point: EntityIdx,
+        /// The B-spline.
+        spline: EntityIdx,
+        /// The knot: its index in the spline's flat knot vector
+        /// ([`crate::spline::knots_or_default`]).
+        knot: u32,
+    },
 }
 
 impl Signature {
@@ -325,6 +336,7 @@ impl Signature {
             S::Fix(_) => K::Fix,
             S::EqualAngle { .. } => K::EqualAngle,
             S::EqualDistance(..) => K::EqualDistance,
+            S::SplinePoint { .. } => K::SplinePoint,
         }
     }
 
@@ -348,7 +360,8 @@ impl Signature {
             | S::IncidentPointCircle { point, circle: other }
             | S::IncidentPointSphere { point, sphere: other }
             | S::Midpoint { point, segment: other }
-            | S::CenterPoint { point, round: other } => vec![point, other],
+            | S::CenterPoint { point, round: other }
+            | S::SplinePoint { point, spline: other, .. } => vec![point, other],
             S::ParallelLinePlane { line, plane }
             | S::PerpendicularLinePlane { line, plane }
             | S::IncidentLinePlane { line, plane } => vec![line, plane],
@@ -534,6 +547,13 @@ impl Signature {
                     Ok((S::EqualLength(args[0], args[1]), 1))
                 }
                 _ => Err("two segments"),
+            },
+            K::SplinePoint => match kinds {
+                // (The knot is found from the value by the builder, which knows the spline.)
+                [EntityKind::Point, EntityKind::BSpline] => {
+                    Ok((S::SplinePoint { point: args[0], spline: args[1], knot: 0 }, n))
+                }
+                _ => Err("a point (field point) and a B-spline (field spline)"),
             },
             K::Midpoint => match kinds {
                 [EntityKind::Point, EntityKind::Segment] => {

@@ -126,6 +126,103 @@ pub fn is_clamped(
         && k[poles..].iter().all(|t| *t == k[poles])
 }
 
+/// The curve's parameter range: `[t_p, t_n]` for an open spline of degree `p` on `n` control
+/// points, one period `[t_0, t_n]` for a periodic one (`knots` flat, [`knots_or_default`]).
+pub fn domain(
+    degree: u32,
+    poles: usize,
+    knots: &[BigRational],
+    periodic: bool,
+) -> (BigRational, BigRational) {
+    let p = degree as usize;
+    let at = |i: usize| knots.get(i).cloned().unwrap_or_else(BigRational::zero);
+    if periodic { (at(0), at(poles)) } else { (at(p), at(poles)) }
+}
+
+/// The curve's point at parameter `u` as an affine combination of its control points, exactly:
+/// `(control point index, coefficient)` pairs whose coefficients sum to 1 (the B-spline basis
+/// functions `N_{i,p}(u)`, times the weights and divided by their weighted sum for a NURBS
+/// curve; Cox–de Boor's recursion, the NURBS Book's A2.2, in rationals). A periodic spline's
+/// indices wrap around. `None` when `u` is outside the curve's range ([`domain`]) or the data
+/// do not make a curve.
+pub fn basis(
+    degree: u32,
+    poles: usize,
+    knots: &[BigRational],
+    weights: &[BigRational],
+    periodic: bool,
+    u: &BigRational,
+) -> Option<Vec<(usize, BigRational)>> {
+    let p = degree as usize;
+    let n = poles;
+    // The unwrapped knot vector (as in `sample`): a periodic spline is the open spline of
+    // n + p control points on its knots continued by the period.
+    let (t, m): (Vec<BigRational>, usize) = if periodic {
+        if knots.len() != n + 1 || n == 0 {
+            return None;
+        }
+        let period = &knots[n] - &knots[0];
+        let t = (0..n + 2 * p + 1)
+            .map(|j| {
+                let j = j as isize - p as isize;
+                let (q, r) = (j.div_euclid(n as isize), j.rem_euclid(n as isize) as usize);
+                &knots[r] + &period * BigRational::from_integer(q.into())
+            })
+            .collect();
+        (t, n + p)
+    } else {
+        if knots.len() != n + p + 1 {
+            return None;
+        }
+        (knots.to_vec(), n)
+    };
+    if m <= p || !(t[p] <= *u && *u <= t[m]) || t[p] >= t[m] {
+        return None;
+    }
+    // The span: t[k] ≤ u < t[k + 1], p ≤ k < m (the last span closed at its end).
+    let mut k = p;
+    while k + 1 < m && t[k + 1] <= *u {
+        k += 1;
+    }
+    // N[j] = N_{k−p+j, p}(u), j = 0..=p.
+    let mut nb = vec![BigRational::zero(); p + 1];
+    nb[0] = BigRational::from_integer(1.into());
+    let mut left = vec![BigRational::zero(); p + 1];
+    let mut right = vec![BigRational::zero(); p + 1];
+    for j in 1..=p {
+        left[j] = u - &t[k + 1 - j];
+        right[j] = &t[k + j] - u;
+        let mut saved = BigRational::zero();
+        for r in 0..j {
+            let den = &right[r + 1] + &left[j - r];
+            let temp = if den.is_zero() { BigRational::zero() } else { &nb[r] / &den };
+            nb[r] = &saved + &right[r + 1] * &temp;
+            saved = &left[j - r] * &temp;
+        }
+        nb[j] = saved;
+    }
+    let one = BigRational::from_integer(1.into());
+    let weight = |i: usize| weights.get(i % n).cloned().unwrap_or_else(|| one.clone());
+    let mut out: Vec<(usize, BigRational)> = Vec::new();
+    for (j, b) in nb.into_iter().enumerate() {
+        let i = (k - p + j) % n;
+        let c = b * weight(k - p + j);
+        match out.iter_mut().find(|(x, _)| *x == i) {
+            Some((_, acc)) => *acc += c,
+            None => out.push((i, c)),
+        }
+    }
+    let total: BigRational = out.iter().map(|(_, c)| c.clone()).sum();
+    if total.is_zero() {
+        return None;
+    }
+    for (_, c) in &mut out {
+        *c = &*c / &total;
+    }
+    out.retain(|(_, c)| !c.is_zero());
+    Some(out)
+}
+
 /// `count + 1` points of the curve (`count ≥ 1`), evenly spaced in its parameter, for drawing:
 /// de Boor's algorithm in homogeneous coordinates. `poles` are the control points' positions
 /// (any dimension), `knots` the flat vector ([`knots_or_default`]), `weights` one per control
@@ -259,6 +356,50 @@ mod tests {
             [q(1), BigRational::new(7071067811865476i64.into(), 10000000000000000i64.into()), q(1)];
         for p in sample(2, &poles, &k, &w, false, 8) {
             assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-9, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn the_exact_basis_agrees_with_the_drawing() {
+        let r = |a: i64, b: i64| BigRational::new(a.into(), b.into());
+        // A uniform cubic at an interior knot away from the clamped ends: (P₃ + 4 P₄ + P₅) / 6;
+        // near an end, the clamped knots weigh otherwise.
+        let k = knots_or_default(3, 8, None, false);
+        let b = basis(3, 8, &k, &[], false, &q(3)).unwrap();
+        assert_eq!(b, vec![(3, r(1, 6)), (4, r(2, 3)), (5, r(1, 6))]);
+        let k6 = knots_or_default(3, 6, None, false);
+        let b = basis(3, 6, &k6, &[], false, &q(2)).unwrap();
+        assert_eq!(b, vec![(2, r(1, 6)), (3, r(7, 12)), (4, r(1, 4))]);
+        // The ends of a clamped spline are its end control points.
+        assert_eq!(basis(3, 8, &k, &[], false, &q(0)).unwrap(), vec![(0, q(1))]);
+        assert_eq!(basis(3, 8, &k, &[], false, &q(5)).unwrap(), vec![(7, q(1))]);
+        assert!(basis(3, 8, &k, &[], false, &q(6)).is_none());
+        // At any parameter, the combination is the drawn point (non-uniform knots, weights).
+        let k = [0, 0, 0, 0, 1, 3, 4, 4, 4, 4].map(q);
+        let w = [q(1), q(2), r(1, 2), q(1), q(3), q(1)];
+        let poles: Vec<Vec<f64>> =
+            (0..6).map(|i| vec![i as f64, ((i * i) % 5) as f64 - 1.0]).collect();
+        let drawn = sample(3, &poles, &k, &w, false, 8);
+        for (s, point) in drawn.iter().enumerate() {
+            let u = r(s as i64, 2);
+            let b = basis(3, 6, &k, &w, false, &u).unwrap();
+            assert_eq!(b.iter().map(|(_, c)| c.clone()).sum::<BigRational>(), q(1));
+            for d in 0..2 {
+                let x: f64 = b.iter().map(|(i, c)| c.to_f64().unwrap() * poles[*i][d]).sum();
+                assert!((x - point[d]).abs() < 1e-12, "{s} {d}: {x} vs {}", point[d]);
+            }
+        }
+        // Periodic: the indices wrap around, and the combination is the drawing's.
+        let k = knots_or_default(3, 4, None, true);
+        assert_eq!(basis(3, 4, &k, &[], true, &q(0)).unwrap().len(), 3);
+        let poles = vec![vec![0.0, 0.0], vec![2.0, 0.0], vec![2.0, 2.0], vec![0.0, 2.0]];
+        let drawn = sample(3, &poles, &k, &[], true, 8);
+        for (s, point) in drawn.iter().enumerate() {
+            let b = basis(3, 4, &k, &[], true, &r(s as i64, 2)).unwrap();
+            for d in 0..2 {
+                let x: f64 = b.iter().map(|(i, c)| c.to_f64().unwrap() * poles[*i][d]).sum();
+                assert!((x - point[d]).abs() < 1e-12, "{s} {d}: {x} vs {}", point[d]);
+            }
         }
     }
 

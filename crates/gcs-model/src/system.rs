@@ -914,6 +914,13 @@ impl SystemBuilder {
                     dim: self.system.dim,
                 })
             })?;
+        let signature = match signature {
+            Signature::SplinePoint { point, spline, .. } => {
+                let knot = self.spline_knot(id, spline, value.as_ref())?;
+                Signature::SplinePoint { point, spline, knot }
+            }
+            other => other,
+        };
         // The DOC of `Fix` is the DOF it pins: the entity's, or its parts', and for an arc
         // one more for each end point (its place along the circle).
         let doc = if let Signature::Fix(e) = signature {
@@ -944,6 +951,43 @@ impl SystemBuilder {
         });
         self.system.ids.insert(id.to_owned(), Item::Constraint(idx));
         Ok(idx)
+    }
+}
+
+impl SystemBuilder {
+    /// The index in B-spline `spline`'s flat knot vector of the parameter `value` of a
+    /// `SplinePoint` (`id`): a knot in the curve's parameter range.
+    fn spline_knot(
+        &self,
+        id: &str,
+        spline: EntityIdx,
+        value: Option<&BigRational>,
+    ) -> Result<u32, ModelError> {
+        let err = |why: String| {
+            ModelError::new(ModelErrorKind::SplineParameter { id: id.to_owned(), why })
+        };
+        let Some(t) = value else {
+            return Err(err("a SplinePoint needs the curve parameter of its point".into()));
+        };
+        let Geometry::BSpline { degree, poles, knots, periodic, .. } =
+            &self.system.entity(spline).geometry
+        else {
+            return Err(err("not a B-spline".into()));
+        };
+        let flat =
+            crate::spline::knots_or_default(*degree, poles.len(), knots.as_deref(), *periodic);
+        let (lo, hi) = crate::spline::domain(*degree, poles.len(), &flat, *periodic);
+        flat.iter()
+            .position(|k| k == t)
+            .filter(|_| &lo <= t && t <= &hi)
+            .map(|i| i as u32)
+            .ok_or_else(|| {
+                err(format!(
+                    "{} is not a knot of the spline in its parameter range (a SplinePoint is at \
+                     a knot)",
+                    crate::number::format_exact(t)
+                ))
+            })
     }
 }
 

@@ -109,7 +109,7 @@ fn every_bad_file_has_its_message() {
         ),
         (
             "constraint_unknown_variant.ron",
-            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, `Fix`, `EqualRadius`, `DistanceX`, `DistanceY`, `TangentAt`, `LengthRatio`, `EqualAngle`, `EqualDistance`, or `Orientation` instead",
+            "constraint_unknown_variant.ron:3:17: RON syntax: Unexpected variant named `Distanc` in enum `Constraint`, expected one of `Coincident`, `Distance`, `Angle`, `Parallel`, `Perpendicular`, `Incident`, `Tangent`, `Concentric`, `Radius`, `EqualLength`, `Midpoint`, `Symmetric`, `Horizontal`, `Vertical`, `Fix`, `EqualRadius`, `DistanceX`, `DistanceY`, `TangentAt`, `LengthRatio`, `EqualAngle`, `EqualDistance`, `SplinePoint`, or `Orientation` instead",
         ),
         (
             "constraint_missing_field.ron",

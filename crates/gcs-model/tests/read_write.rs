@@ -83,13 +83,14 @@ fn zoo_2d_doc_table() {
         ("ratio", 1),
         ("ea", 1),
         ("ed", 1),
+        ("sp", 2),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");
     }
-    // Points (the arc's two and the centre `arc.center` named by a constraint among them),
-    // lines, circles and the arc.
-    assert_eq!(s.dof_sum(), 11 * 2 + 4 * 2 + 3 * 3 + 3);
+    // Points (the arc's two and the centre `arc.center` named by a constraint among them, the
+    // spline's five control points and its point `sq`), lines, circles and the arc.
+    assert_eq!(s.dof_sum(), 17 * 2 + 4 * 2 + 3 * 3 + 3);
     // Every constraint kind exists in 2D, and the zoo has them all.
     let kinds: std::collections::BTreeSet<ConstraintKind> =
         s.constraints().iter().map(|c| c.kind).collect();
@@ -146,6 +147,7 @@ fn zoo_3d_doc_table() {
         ("cps", 3),
         ("symp", 3),
         ("ratio", 1),
+        ("sp", 3),
     ];
     for (id, want) in table {
         assert_eq!(doc(id), want, "{id}");

@@ -449,6 +449,7 @@ impl Facts {
                 | S::Metric(Metric::DistanceCircleCircle(..))
                 | S::EqualAngle { .. }
                 | S::EqualDistance(..)
+                | S::SplinePoint { .. }
                 | S::Fix(_) => {}
             }
         }

@@ -125,6 +125,9 @@ pub fn locus(system: &System, c: ConstraintIdx, p: EntityIdx) -> Option<Locus> {
         Signature::SymmetricAboutPoint { a, b, center } => {
             (a != b && a != center && b != center).then_some(whole)
         }
+        Signature::SplinePoint { point, spline, .. } => {
+            (point == p && !system.base_entities(spline).contains(&p)).then_some(whole)
+        }
         _ => None,
     }
 }

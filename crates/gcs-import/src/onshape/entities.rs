@@ -45,8 +45,10 @@ pub(super) enum Read {
     /// An entity that cannot be expressed, with the reason.
     Skip(String),
     /// An entity that is several of the neutral sketch's, held together by constraints (a text
-    /// or image box: a rectangle of four segments and its centre).
-    Composite(Vec<(ir::Entity, Shape)>, Vec<ir::Constraint>),
+    /// or image box: a rectangle of four segments and its centre; an interpolated spline: a
+    /// B-spline and its interpolation points), with the ids of Onshape's that name a part of
+    /// one of them (`<id>.0.internal`: the spline's start) as `(id, entity, suffix)`.
+    Composite(Vec<(ir::Entity, Shape)>, Vec<ir::Constraint>, Vec<(String, String, &'static str)>),
 }
 
 /// Reads one entity whose `message` is `msg` (the id has been read by the caller).
@@ -76,11 +78,7 @@ pub(super) fn read(type_name: &str, msg: &Object, id: &str) -> Result<Read, Stri
                 "BTCurveGeometryCircle" => circle(g, bounded.then(range).transpose()?, made),
                 "BTCurveGeometryEllipse" => ellipse(g, bounded.then(range).transpose()?, made),
                 "BTCurveGeometrySpline" => spline(g, msg, made),
-                "BTCurveGeometryInterpolatedSpline" => Ok(Read::Skip(
-                    "interpolated spline (BTCurveGeometryInterpolatedSpline): a curve through points with end \
-                     derivatives whose B-spline form (Onshape's parametrisation) is not in the file"
-                        .into(),
-                )),
+                "BTCurveGeometryInterpolatedSpline" => interpolated(g, msg, id, construction),
                 other => Ok(Read::Skip(format!("curve geometry {other} is not supported"))),
             }
         }
@@ -201,7 +199,7 @@ fn boxed(
                 None,
             ),
         ]);
-        Ok(Read::Composite(entities, constraints))
+        Ok(Read::Composite(entities, constraints, Vec::new()))
     };
     rectangle().or_else(|why| Ok(Read::Skip(format!("a {kind} box: {why}"))))
 }
@@ -407,6 +405,219 @@ fn spline(
     )
 }
 
+/// Most interpolation points read (a larger spline is skipped: its control points are solved
+/// for densely).
+const MAX_INTERPOLATION_POINTS: usize = 400;
+
+/// An interpolated spline (`BTCurveGeometryInterpolatedSpline`): the cubic through its
+/// interpolation points `Q₀ … Q_{m−1}`, as the B-spline Onshape builds (the NURBS Book's global
+/// interpolation with end derivatives, §9.2.2): parameters `t_k` by the centripetal rule (the
+/// sum of the square roots of the chords, from 0 to 1), knots `0⁴ t₁ … t_{m−2} 1⁴`, control
+/// points `Q₀`, the start handle, m − 2 inner ones, the end handle, `Q_{m−1}` — the handles
+/// are `Q₀ + t₁·D₀/3` and `Q_{m−1} − (1 − t_{m−2})·D₁/3`, which the file's `startHandle` and
+/// `endHandle` are (to 1e-16 m on every spline of SketchGraphs' sample), so the derivatives are
+/// the legs of the control polygon. A periodic one: the periodic cubic with knots `t₀ … t_m`
+/// (the closing chord included) and its m control points. The inner control points are
+/// solved (in doubles) so that the curve passes through the points at their knots.
+///
+/// It becomes the B-spline `<id>`, its inner interpolation points `<id>.<k>.internal` (all of
+/// them for a periodic spline) held on it at their knots (`SplinePoint`, `<id>#through<k>`),
+/// and the aliases: `<id>.0.internal` and `<id>.<m−1>.internal` are its start and end,
+/// `<id>.startDerivative` and `<id>.endDerivative` its end legs. A spline trimmed to a part of
+/// its range is skipped, as control-point splines are.
+fn interpolated(g: &Object, msg: &Object, id: &str, construction: bool) -> Result<Read, String> {
+    let what = "interpolated spline (BTCurveGeometryInterpolatedSpline)";
+    let coordinates = json::numbers(g, "interpolationPoints")?;
+    if coordinates.len() % 2 != 0 {
+        return Ok(Read::Skip(format!("{what} with an odd number of coordinates")));
+    }
+    let q: Vec<(f64, f64)> = coordinates.chunks(2).map(|c| (c[0], c[1])).collect();
+    let m = q.len();
+    let periodic = json::flag(g, "isPeriodic")?;
+    if m < 2 || (periodic && m < 4) || m > MAX_INTERPOLATION_POINTS {
+        return Ok(Read::Skip(format!(
+            "{what} through {m} points (read: 2 to {MAX_INTERPOLATION_POINTS}, 4 or more when \
+             periodic)"
+        )));
+    }
+    let (t0, t1) = (json::opt_number(msg, "startParam")?, json::opt_number(msg, "endParam")?);
+    if t0.is_some_and(|t| t.abs() > 1e-12) || t1.is_some_and(|t| (t - 1.0).abs() > 1e-12) {
+        return Ok(Read::Skip(format!(
+            "{what} trimmed to parameters [{}, {}] inside its range [0, 1]: the ends of a \
+             trimmed spline are no control points",
+            t0.unwrap_or(0.0),
+            t1.unwrap_or(1.0)
+        )));
+    }
+    // Centripetal parameters.
+    let chords: Vec<f64> = (0..if periodic { m } else { m - 1 })
+        .map(|i| {
+            let (a, b) = (q[i], q[(i + 1) % m]);
+            (b.0 - a.0).hypot(b.1 - a.1).sqrt()
+        })
+        .collect();
+    let total: f64 = chords.iter().sum();
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !positive(total) || !chords.iter().all(|c| positive(*c)) {
+        return Ok(Read::Skip(format!("{what} with two consecutive points at the same place")));
+    }
+    let mut params = vec![0.0];
+    let mut run = 0.0;
+    for c in &chords[..chords.len() - 1] {
+        run += c;
+        params.push(run / total);
+    }
+    params.push(1.0);
+    // Exact knots (the shortest decimals of the parameters), strictly increasing.
+    let knots: Vec<Number> = params
+        .iter()
+        .map(|t| Number::from_f64(*t).ok_or("a parameter is out of range"))
+        .collect::<Result<_, _>>()?;
+    if knots.windows(2).any(|w| w[0].0 >= w[1].0) {
+        return Ok(Read::Skip(format!("{what} whose parameters do not increase")));
+    }
+    let flat: Vec<BigRational> = if periodic {
+        knots.iter().map(|k| k.0.clone()).collect()
+    } else {
+        let (zero, one) = (&knots[0].0, &knots[m - 1].0);
+        let inner = knots[1..m - 1].iter().map(|k| k.0.clone());
+        std::iter::repeat_n(zero.clone(), 4)
+            .chain(inner)
+            .chain(std::iter::repeat_n(one.clone(), 4))
+            .collect()
+    };
+    let n = if periodic { m } else { m + 2 };
+    // The control points: the ends and handles known (open), the others solved from the
+    // interpolation conditions Σ N_j(t_k) P_j = Q_k.
+    let mut known: Vec<Option<(f64, f64)>> = vec![None; n];
+    if !periodic {
+        let handle = |x: &str, y: &str| -> Result<Option<(f64, f64)>, String> {
+            Ok(json::opt_number(g, x)?.zip(json::opt_number(g, y)?))
+        };
+        let (Some(start), Some(end)) =
+            (handle("startHandleX", "startHandleY")?, handle("endHandleX", "endHandleY")?)
+        else {
+            return Ok(Read::Skip(format!("{what} without its end handles")));
+        };
+        known[0] = Some(q[0]);
+        known[1] = Some(start);
+        known[n - 2] = Some(end);
+        known[n - 1] = Some(q[m - 1]);
+    }
+    let unknown: Vec<usize> = (0..n).filter(|j| known[*j].is_none()).collect();
+    let rows: Vec<usize> = if periodic { (0..m).collect() } else { (1..m - 1).collect() };
+    let size = unknown.len();
+    let mut a = vec![vec![0.0; size + 2]; size];
+    for (r, &k) in rows.iter().enumerate() {
+        let basis = gcs_model::spline::basis(3, n, &flat, &[], periodic, &knots[k].0)
+            .ok_or("an interpolation parameter is outside the spline's range")?;
+        let (mut bx, mut by) = q[k];
+        for (j, c) in basis {
+            let c = num_traits::ToPrimitive::to_f64(&c).unwrap_or(f64::NAN);
+            match known[j] {
+                Some((x, y)) => {
+                    bx -= c * x;
+                    by -= c * y;
+                }
+                None => {
+                    let col = unknown.iter().position(|u| *u == j).unwrap_or(0);
+                    a[r][col] += c;
+                }
+            }
+        }
+        a[r][size] = bx;
+        a[r][size + 1] = by;
+    }
+    let Some(solved) = solve(a) else {
+        return Ok(Read::Skip(format!("{what} whose control points its points do not determine")));
+    };
+    for (j, xy) in unknown.iter().zip(solved) {
+        known[*j] = Some(xy);
+    }
+    let poles = known
+        .iter()
+        .map(|p| p.map_or(Err("a control point is missing".to_owned()), |(x, y)| point(x, y)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut grouped: Vec<(Number, u32)> = Vec::new();
+    for k in flat {
+        match grouped.last_mut() {
+            Some((last, mult)) if last.0 == k => *mult += 1,
+            _ => grouped.push((Number(k), 1)),
+        }
+    }
+    let spline = ir::Entity {
+        id: id.to_owned(),
+        geometry: Geometry::BSpline { degree: 3, poles, weights: None, knots: grouped, periodic },
+        construction,
+        external: false,
+    };
+    let mut entities = vec![(spline, Shape::Spline)];
+    let mut constraints = Vec::new();
+    for &k in &rows {
+        let pid = format!("{id}.{k}.internal");
+        entities.push((
+            ir::Entity {
+                id: pid.clone(),
+                geometry: Geometry::Point { at: point(q[k].0, q[k].1)? },
+                construction,
+                external: false,
+            },
+            Shape::Point,
+        ));
+        constraints.push(ir::Constraint {
+            id: format!("{id}#through{k}"),
+            kind: Kind::SplinePoint,
+            refs: vec![Ref::whole(pid), Ref::whole(id)],
+            value: Some(knots[k].clone()),
+            driving: true,
+        });
+    }
+    let aliases = if periodic {
+        Vec::new()
+    } else {
+        vec![
+            (format!("{id}.0.internal"), id.to_owned(), "start"),
+            (format!("{id}.{}.internal", m - 1), id.to_owned(), "end"),
+        ]
+    };
+    Ok(Read::Composite(entities, constraints, aliases))
+}
+
+/// Solves the square system `a` (each row its coefficients, then two right-hand sides) by
+/// Gaussian elimination with partial pivoting; `None` when it is singular.
+fn solve(mut a: Vec<Vec<f64>>) -> Option<Vec<(f64, f64)>> {
+    let n = a.len();
+    for col in 0..n {
+        let pivot = (col..n).max_by(|i, j| a[*i][col].abs().total_cmp(&a[*j][col].abs()))?;
+        // (The drawing only: an exactly zero pivot is a singular system.)
+        let p = a[pivot][col].abs();
+        if p.is_nan() || p == 0.0 {
+            return None;
+        }
+        a.swap(col, pivot);
+        let (top, rest) = a.split_at_mut(col + 1);
+        let pivot_row = &top[col];
+        for row in rest {
+            let f = row[col] / pivot_row[col];
+            if f != 0.0 {
+                for (x, y) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                    *x -= f * y;
+                }
+            }
+        }
+    }
+    let mut x = vec![(0.0, 0.0); n];
+    for r in (0..n).rev() {
+        let (mut sx, mut sy) = (a[r][n], a[r][n + 1]);
+        for c in r + 1..n {
+            sx -= a[r][c] * x[c].0;
+            sy -= a[r][c] * x[c].1;
+        }
+        x[r] = (sx / a[r][r], sy / a[r][r]);
+    }
+    x.iter().all(|(x, y)| x.is_finite() && y.is_finite()).then_some(x)
+}
+
 /// The sketch's entities as constraints see them.
 #[derive(Default)]
 pub(super) struct Table {
@@ -449,6 +660,14 @@ impl Table {
                     .or_insert_with(|| Some((id.to_owned(), suffix)));
             }
         }
+    }
+
+    /// Records an id Onshape gives to a named point of a read entity (`suffix`: `start`…).
+    pub(super) fn alias(&mut self, alias: &str, entity: &str, suffix: &'static str) {
+        self.aliases
+            .entry(alias.to_owned())
+            .and_modify(|a| *a = None)
+            .or_insert_with(|| Some((entity.to_owned(), suffix)));
     }
 
     /// Records a skipped entity.
@@ -504,6 +723,12 @@ impl Table {
             }
             (Shape::Segment | Shape::Spline, "start") => Part::Start,
             (Shape::Segment | Shape::Spline, "end") => Part::End,
+            // An interpolated spline's end derivatives: the legs of its control polygon.
+            (Shape::Spline, "startDerivative" | "endDerivative") => {
+                let part =
+                    if suffix == "startDerivative" { Part::StartTangent } else { Part::EndTangent };
+                return Target::Found(Ref::part(base, part), Shape::Segment);
+            }
             (
                 Shape::Circle | Shape::Arc { .. } | Shape::Ellipse | Shape::EllipticalArc { .. },
                 "center",

@@ -21,7 +21,8 @@
 //! | `BTCurveGeometryEllipse` (curve / segment) | `Ellipse` / `EllipticalArc` (same parametrisation with the two radii; ends swapped when clockwise) |
 //! | `BTCurveGeometrySpline` (not periodic, not rational, not trimmed) | `BSpline` (poles in mm, knots as given) |
 //! | `BTMSketchTextEntity`, `BTMSketchImageEntity` | a rectangle of 4 segments (`<id>.sketch_text.baseline`, `.ascent` (its top), `.left`, `.right`; `<id>.sketch_image.bottom`, `.top`, `.left`, `.right`) and its centre (`….center`), with the drawn proportions (a text's through its font, an image's aspect ratio): constraints `<id>#corner1`…`#corner4`, `#parallel`, `#perpendicular`, `#perpendicular2`, `#ratio` (`LengthRatio`), `#center` |
-//! | interpolated splines, periodic, rational or trimmed splines, conics | skipped, with the reason |
+//! | `BTCurveGeometryInterpolatedSpline` (not trimmed) | the cubic `BSpline` through its points Onshape builds (centripetal knots, its end handles as the second and last-but-one control points; periodic: the periodic cubic), its inner interpolation points `<id>.<k>.internal` (all, when periodic) held at their knots (`SplinePoint`, `<id>#through<k>`); `<id>.0.internal` and the last are its start and end, `<id>.startDerivative` and `.endDerivative` its end legs (see `entities::interpolated`) |
+//! | periodic, rational or trimmed control-point splines, trimmed interpolated splines, conics | skipped, with the reason |
 //!
 //! SketchGraphs' files carry no external geometry: references outside the sketch (the origin,
 //! model edges) are queries whose ids the dataset stripped, so no entity is `external`.
@@ -169,10 +170,16 @@ fn read_sketch(
                 table.add_skipped(id, &reason);
                 sketch.skipped.push(ir::Skipped { item: id.to_owned(), reason });
             }
-            Read::Composite(parts, constraints) => {
+            Read::Composite(parts, constraints, aliases) => {
+                // (The element's point ids name the part that has its id, if one does.)
+                let none = json::Object::new();
                 for (entity, shape) in parts {
-                    table.add(&entity.id, shape, sketch.entities.len(), msg);
+                    let own = if entity.id == id { msg } else { &none };
+                    table.add(&entity.id, shape, sketch.entities.len(), own);
                     sketch.entities.push(entity);
+                }
+                for (alias, entity, suffix) in aliases {
+                    table.alias(&alias, &entity, suffix);
                 }
                 sketch.constraints.extend(constraints);
             }
@@ -195,6 +202,19 @@ fn read_sketch(
             continue;
         }
         match constraints::read(msg, id, &table, &sketch.entities).map_err(in_constraint)? {
+            // Onshape ties an interpolated spline's start and end to its first and last
+            // interpolation points, which are one point here.
+            Outcome::Constraints(list)
+                if matches!(list.as_slice(), [c] if c.kind == ir::Kind::Coincident
+                    && c.refs.len() == 2 && c.refs[0] == c.refs[1]) =>
+            {
+                sketch.notes.push(ir::Skipped {
+                    item: id.to_owned(),
+                    reason: "COINCIDENT of two names of one point (an interpolated spline's end \
+                             and its end interpolation point)"
+                        .into(),
+                });
+            }
             Outcome::Constraints(list) => sketch.constraints.extend(list),
             Outcome::Skip(skipped) => sketch.skipped.push(skipped),
             Outcome::Part(list, skipped) => {
