@@ -1045,14 +1045,12 @@ impl Lowering {
             (Kind::EqualGaps, _) => {
                 unsupported("equal gaps other than of circles, points and lines")
             }
-            (Kind::EqualLengthPointLineDistance, [S, P, S])
-                if t[0].shape == Some(Shape::Segment) =>
-            {
-                let (a, b) = self.ends(&t[0]);
-                self.push(K::EqualDistance, &c.id, &[&a, &b, &t[1], &t[2]], None)
-            }
+            // (The model's EqualDistance states a length equal to a point–line distance too;
+            // lowered, it leaves loops beside other equal lengths that the placement does not
+            // close yet — SolveSpace's `mapping2d` test file is then refused a witness —, so it
+            // stays skipped.)
             (Kind::EqualLengthPointLineDistance, _) => {
-                unsupported("a length of an infinite line equal to a point–line distance")
+                unsupported("a length equal to a point–line distance")
             }
             (Kind::ArcLength, _) => unsupported("an arc length"),
             (kind, _) => Err(format!(
