@@ -536,22 +536,7 @@ impl<'s> Problem<'s> {
 
     /// The triangles of distances among the problem's constraints.
     fn triangles(&self) -> Vec<[EntityIdx; 3]> {
-        let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
-        let mut points: Vec<EntityIdx> = Vec::new();
-        let mut edges = Vec::new();
-        for &c in &self.constraints {
-            let Some([p, q]) = distance_points(self.system, c) else { continue };
-            let mut id = |e: EntityIdx| {
-                *index.entry(e).or_insert_with(|| {
-                    points.push(e);
-                    points.len() - 1
-                })
-            };
-            edges.push((id(p), id(q)));
-        }
-        (gcs_model::generate::triangles(points.len(), &edges).iter())
-            .map(|t| t.map(|i| points[i]))
-            .collect()
+        triangles_of(self.system, self.constraints.iter().copied())
     }
 
     /// The largest relative residual of the constraints at `x`, with its constraint.
@@ -1777,10 +1762,18 @@ fn distance_triangles(system: &System) -> Vec<[EntityIdx; 3]> {
     if system.dim() != gcs_model::Dim::Two {
         return Vec::new();
     }
+    triangles_of(system, system.constraint_indices())
+}
+
+/// The triangles of the `Distance`s among `constraints` (see [`distance_points`]).
+fn triangles_of(
+    system: &System,
+    constraints: impl Iterator<Item = ConstraintIdx>,
+) -> Vec<[EntityIdx; 3]> {
     let mut index: std::collections::HashMap<EntityIdx, usize> = Default::default();
     let mut points: Vec<EntityIdx> = Vec::new();
     let mut edges = Vec::new();
-    for c in system.constraint_indices() {
+    for c in constraints {
         let Some([p, q]) = distance_points(system, c) else { continue };
         let mut id = |e: EntityIdx| {
             *index.entry(e).or_insert_with(|| {
