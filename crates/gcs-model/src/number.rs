@@ -48,13 +48,16 @@ fn parse_decimal(text: &str) -> Option<BigRational> {
     if !digits_ok(int_part) || !digits_ok(frac_part) {
         return None;
     }
+    let frac_len = frac_part.bytes().filter(|b| *b != b'_').count() as i64;
+    let scale = exponent.checked_sub(frac_len)?;
+    if let Some(value) = small_decimal(int_part, frac_part, scale) {
+        return Some(if negative { -value } else { value });
+    }
     let digits: String = int_part.chars().chain(frac_part.chars()).filter(|c| *c != '_').collect();
     if digits.is_empty() {
         return None;
     }
     let mantissa: BigInt = digits.parse().ok()?;
-    let frac_len = frac_part.chars().filter(|c| *c != '_').count() as i64;
-    let scale = exponent.checked_sub(frac_len)?;
     // Refuse absurd exponents instead of allocating huge powers of ten.
     if scale.unsigned_abs() > 10_000 {
         return None;
@@ -70,6 +73,44 @@ fn parse_decimal(text: &str) -> Option<BigRational> {
         value = -value;
     }
     Some(value)
+}
+
+/// `digits · 10^scale` (the digits of `int_part` then `frac_part`, ASCII digits and `_`) in
+/// lowest terms without big-integer arithmetic, when the digits fit in 36 decimal places and
+/// `|scale| ≤ 36` (CAD coordinates: `12.3456789` is 123456789 / 10^7); `None` otherwise, and for
+/// no digits at all. The denominator of a decimal is a power of ten, so the only common factors
+/// are twos and fives: dividing them out leaves the fraction in lowest terms, the value
+/// `BigRational::new` would give after its gcd.
+fn small_decimal(int_part: &str, frac_part: &str, scale: i64) -> Option<BigRational> {
+    let mut mantissa: u128 = 0;
+    let mut count = 0;
+    for b in int_part.bytes().chain(frac_part.bytes()).filter(|b| *b != b'_') {
+        count += 1;
+        if count > 36 {
+            return None;
+        }
+        mantissa = mantissa * 10 + u128::from(b - b'0');
+    }
+    if count == 0 || scale.unsigned_abs() > 36 {
+        return None;
+    }
+    let k = scale.unsigned_abs() as u32;
+    if scale >= 0 {
+        let value = mantissa.checked_mul(10u128.checked_pow(k)?)?;
+        return Some(BigRational::from_integer(value.into()));
+    }
+    if mantissa == 0 {
+        return Some(BigRational::from_integer(0.into()));
+    }
+    let twos = mantissa.trailing_zeros().min(k);
+    mantissa >>= twos;
+    let mut fives = 0;
+    while fives < k && mantissa % 5 == 0 {
+        mantissa /= 5;
+        fives += 1;
+    }
+    let denominator = (1u128 << (k - twos)) * 5u128.pow(k - fives);
+    Some(BigRational::new_raw(mantissa.into(), denominator.into()))
 }
 
 /// The exact rational a finite `f64` read from a model file stands for: the shortest decimal
@@ -260,6 +301,62 @@ pub fn written_precision(value: &BigRational) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn small_decimals_match_the_big_integer_path() {
+        // The fast path against `BigRational::new` (gcd) on the cases that reduce: trailing
+        // zeros, powers of two and five, negative numbers, exponents, 36 digits.
+        let cases = [
+            "0",
+            "0.0",
+            "-0.000",
+            "1",
+            "10",
+            "12.3456789",
+            "-85.945909214",
+            "0.5",
+            "0.25",
+            "0.125",
+            "0.2",
+            "0.04",
+            "0.008",
+            "1.6",
+            "7.2",
+            "80.622971058",
+            "1_000.000_5",
+            "2.5e3",
+            "2.5e-3",
+            "-1.25E-1",
+            "123456789012345678901234567890.123456",
+            "0.000000000000000000000000000000000001",
+            "3.0e36",
+            "999999999999999999999999999999999999",
+        ];
+        for text in cases {
+            let (negative, body) = match text.strip_prefix('-') {
+                Some(rest) => (true, rest),
+                None => (false, text),
+            };
+            let (mantissa, exponent) = match body.find(['e', 'E']) {
+                Some(i) => (&body[..i], body[i + 1..].parse::<i64>().unwrap()),
+                None => (body, 0),
+            };
+            let (int_part, frac_part) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+            let digits: String = format!("{int_part}{frac_part}").replace('_', "");
+            let scale = exponent - frac_part.replace('_', "").len() as i64;
+            let m: BigInt = digits.parse().unwrap();
+            let p = num_traits::pow(BigInt::from(10), scale.unsigned_abs() as usize);
+            let mut want =
+                if scale >= 0 { BigRational::from_integer(m * p) } else { BigRational::new(m, p) };
+            if negative {
+                want = -want;
+            }
+            let got = parse_exact(text).unwrap();
+            assert_eq!(got, want, "{text}");
+            // Lowest terms, positive denominator: the same parts as after a gcd.
+            assert_eq!((got.numer(), got.denom()), (want.numer(), want.denom()), "{text}");
+        }
+    }
 
     #[test]
     fn decimals_are_exact() {

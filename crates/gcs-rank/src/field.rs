@@ -61,6 +61,19 @@ pub trait Field: Clone + PartialEq + std::fmt::Debug + Send + Sync + 'static {
     fn inv(&self) -> Option<Self>;
     /// `self -= a * b`, the elimination hot loop.
     fn sub_mul_assign(&mut self, a: &Self, b: &Self);
+    /// `self -= a * b` in a dense accumulator, where `neg_a` is `a.neg()`: the result may be
+    /// left in a redundant form (another representative of the same residue) that only
+    /// [`Field::settle`] makes canonical; until then, nothing but this step and `settle` may
+    /// read it. The default is [`Field::sub_mul_assign`] (always canonical); `ModP` skips the
+    /// final reductions.
+    #[inline]
+    fn sub_mul_unsettled(&mut self, a: &Self, neg_a: &Self, b: &Self) {
+        let _ = neg_a;
+        self.sub_mul_assign(a, b);
+    }
+    /// Makes a value left by [`Field::sub_mul_unsettled`] canonical (nothing by default).
+    #[inline]
+    fn settle(&mut self) {}
     /// `|self|` as an `f64`, for tolerances and pivoting. Exact fields give an approximation;
     /// prime fields give `0.0` for zero and `1.0` otherwise.
     fn magnitude(&self) -> f64;

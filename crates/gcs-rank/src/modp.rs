@@ -214,6 +214,24 @@ impl Field for ModP {
     fn mul(&self, rhs: &Self) -> Self {
         ModP(mersenne_reduce(self.0 as u128 * rhs.0 as u128))
     }
+
+    /// `self + (−a)·b` folded once, branch-free: for `self < 2^62` and canonical `−a`, `b`,
+    /// the sum is at most `2^62 − 1 + (2^61 − 1)^2 = 2^122`, and `lo + hi` of it is below
+    /// `2^61 + 2^61 = 2^62` again — so values stay below `2^62` step after step.
+    #[inline]
+    fn sub_mul_unsettled(&mut self, _a: &Self, neg_a: &Self, b: &Self) {
+        const P: u64 = ModP::PRIME;
+        let t = self.0 as u128 + neg_a.0 as u128 * b.0 as u128;
+        self.0 = (t as u64 & P) + (t >> 61) as u64;
+    }
+
+    #[inline]
+    fn settle(&mut self) {
+        const P: u64 = ModP::PRIME;
+        // self < 2^62: one fold leaves at most 2^61, one subtraction a canonical value.
+        let folded = (self.0 & P) + (self.0 >> 61);
+        self.0 = if folded >= P { folded - P } else { folded };
+    }
 }
 
 impl<const P: u64> Field for ModPrime<P> {
@@ -424,6 +442,45 @@ mod tests {
     use super::*;
 
     type Big = ModPrime<18_446_744_073_709_551_557>; // 2^64 − 59
+
+    #[test]
+    fn unsettled_steps_settle_to_the_canonical_residue() {
+        // Chains of unsettled steps against the canonical ones, on the extreme operands (the
+        // bound 2^62 is reached only by products near (p − 1)^2) and on pseudo-random ones.
+        let p = ModP::PRIME;
+        let edges = [0, 1, 2, p / 2, p - 2, p - 1];
+        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % p
+        };
+        for round in 0..200 {
+            let (mut lazy, mut exact) = (ModP::new(next()), ModP::new(0));
+            exact = exact.add(&lazy);
+            for step in 0..500 {
+                let (a, b) = if round < 36 {
+                    (edges[round % 6], edges[(round / 6 + step) % 6])
+                } else {
+                    (next(), next())
+                };
+                let (a, b) = (ModP::new(a), ModP::new(b));
+                lazy.sub_mul_unsettled(&a, &a.neg(), &b);
+                assert!(lazy.0 < 1 << 62, "unsettled value {} past 2^62", lazy.0);
+                exact.sub_mul_assign(&a, &b);
+                let mut settled = lazy;
+                settled.settle();
+                assert_eq!(settled, exact, "round {round}, step {step}");
+            }
+        }
+        // Every representative below 2^62 settles: 0, p, 2p, 2^62 − 1.
+        for (x, r) in [(0, 0), (p, 0), (2 * p, 0), ((1 << 62) - 1, 1)] {
+            let mut v = ModP(x);
+            v.settle();
+            assert_eq!(v.0, r, "{x}");
+        }
+    }
 
     #[test]
     fn inverses_and_small_fractions_in_either_word_size() {

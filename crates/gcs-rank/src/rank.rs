@@ -164,7 +164,7 @@ pub fn random_kernel_vector<F: Field>(
             // Leading 1 at c, every other entry to its right, already known.
             k if k != NONE => {
                 let mut x = F::zero();
-                for (j, a) in lu.stored[k].row.iter().skip(1) {
+                for (j, a) in lu.row(k).iter().skip(1) {
                     x.sub_mul_assign(a, &w[*j]);
                 }
                 x
@@ -201,6 +201,11 @@ struct Plain<F> {
     /// Position in the order → index in `stored` of its pivot row, or `NONE`.
     pivot_of: Vec<usize>,
     stored: Vec<Stored<F>>,
+    /// The stored rows' entries, one after another (a row's are `entries[span[k].0..span[k].1]`):
+    /// one allocation in the order the rows were stored, and a reduction step reads its pivot
+    /// row with one lookup in `span` instead of two pointer chases to a `Vec` of its own.
+    entries: Vec<(usize, F)>,
+    span: Vec<(usize, usize)>,
     track: bool,
     fill: Vec<usize>,
     /// The dense form of the row being reduced, for rows whose reduction fills in.
@@ -211,9 +216,8 @@ struct Plain<F> {
 }
 
 /// One stored row: `row = inv · (input[id] − Σ m · stored[k].row)` over `multipliers` (kept
-/// only when tracked); entries in the order's numbering, leading 1.
+/// only when tracked); the row's entries ([`Plain::row`]) in the order's numbering, leading 1.
 struct Stored<F> {
-    row: Vec<(usize, F)>,
     id: usize,
     inv: F,
     multipliers: Vec<(usize, F)>,
@@ -239,6 +243,8 @@ impl<F: Field> Plain<F> {
             order: Order::new(ncols, rows),
             pivot_of: vec![NONE; ncols],
             stored: Vec::new(),
+            entries: Vec::new(),
+            span: Vec::new(),
             track,
             fill: Vec::new(),
             dense: Accumulator::default(),
@@ -285,7 +291,8 @@ impl<F: Field> Plain<F> {
             if dense {
                 return self.insert_dense(id, entries, used);
             }
-            let pivot_row = &self.stored[k].row;
+            let (from, to) = self.span[k];
+            let pivot_row = &self.entries[from..to];
             rent += entries.len() + pivot_row.len();
             self.fill.clear();
             sub_scaled(&mut entries, &value, pivot_row, Some(lead), |_| false, &mut self.fill);
@@ -319,9 +326,19 @@ impl<F: Field> Plain<F> {
                 acc.drain(lead + 1, &mut entries);
                 return self.store(id, lead, entries, value, used);
             }
+            // The next step's pivot row is most often that of the next position marked now
+            // (fill from this step lands before it less often): its first entry is read ahead,
+            // so that fetching it from memory overlaps this step's arithmetic.
+            if let Some(next) = acc.peek_after(lead)
+                && let Some(&(start, _)) = self.span.get(self.pivot_of[next])
+            {
+                std::hint::black_box(self.entries.get(start).map(|e| e.0));
+            }
             // The pivot row leads with its pivot column, which `take` has already cleared.
-            for (j, s) in self.stored[k].row.iter().skip(1) {
-                acc.sub_mul(*j, &value, s);
+            let neg = value.neg();
+            let (start, end) = self.span[k];
+            for (j, s) in &self.entries[start + 1..end] {
+                acc.sub_mul(*j, &value, &neg, s);
             }
             if self.track {
                 used.push((k, value));
@@ -348,8 +365,17 @@ impl<F: Field> Plain<F> {
             *v = v.mul(&inv);
         }
         self.pivot_of[lead] = self.stored.len();
-        self.stored.push(Stored { row: entries, id, inv, multipliers: used });
+        let from = self.entries.len();
+        self.entries.extend(entries);
+        self.span.push((from, self.entries.len()));
+        self.stored.push(Stored { id, inv, multipliers: used });
         Ok(self.order.column(lead))
+    }
+
+    /// The entries of stored row `k`.
+    fn row(&self, k: usize) -> &[(usize, F)] {
+        let (from, to) = self.span[k];
+        &self.entries[from..to]
     }
 
     /// `Σ c · stored[k].row` over `used`, as a combination of input rows (sorted by id, zeros
@@ -492,16 +518,20 @@ impl<F: Field> Accumulator<F> {
         self.mark(c);
     }
 
-    /// `values[c] −= a · b`.
-    fn sub_mul(&mut self, c: usize, a: &F, b: &F) {
-        self.values[c].sub_mul_assign(a, b);
+    /// `values[c] −= a · b` (`neg_a` is `−a`), left unsettled ([`Field::sub_mul_unsettled`]:
+    /// every read below settles the value first).
+    #[inline]
+    fn sub_mul(&mut self, c: usize, a: &F, neg_a: &F, b: &F) {
+        self.values[c].sub_mul_unsettled(a, neg_a, b);
         self.mark(c);
     }
 
     /// The value at `c`, leaving zero there.
     fn take(&mut self, c: usize) -> F {
         self.bits[c / 64] &= !(1 << (c % 64));
-        std::mem::replace(&mut self.values[c], F::zero())
+        let mut v = std::mem::replace(&mut self.values[c], F::zero());
+        v.settle();
+        v
     }
 
     /// The first position at or after `from` with a nonzero value; the marks of the zeros
@@ -512,6 +542,7 @@ impl<F: Field> Accumulator<F> {
         loop {
             while word != 0 {
                 let c = w * 64 + word.trailing_zeros() as usize;
+                self.values[c].settle();
                 if !self.values[c].is_zero() {
                     return Some(c);
                 }
@@ -523,6 +554,17 @@ impl<F: Field> Accumulator<F> {
         }
     }
 
+    /// The first marked position after `c` (its value may be zero), without clearing marks.
+    fn peek_after(&self, c: usize) -> Option<usize> {
+        let mut w = (c + 1) / 64;
+        let mut word = self.bits.get(w)? & (!0 << ((c + 1) % 64));
+        while word == 0 {
+            w += 1;
+            word = *self.bits.get(w)?;
+        }
+        Some(w * 64 + word.trailing_zeros() as usize)
+    }
+
     /// Appends the nonzero entries to `out`, in order, and clears every position. All marks are
     /// at or after `from` (the reduction has cleared the positions it passed), so the words
     /// before its word are not read.
@@ -532,7 +574,8 @@ impl<F: Field> Accumulator<F> {
             while word != 0 {
                 let c = w * 64 + word.trailing_zeros() as usize;
                 word &= word - 1;
-                let v = std::mem::replace(&mut self.values[c], F::zero());
+                let mut v = std::mem::replace(&mut self.values[c], F::zero());
+                v.settle();
                 if !v.is_zero() {
                     out.push((c, v));
                 }
@@ -680,7 +723,8 @@ mod tests {
         let stored = lu
             .stored
             .iter()
-            .map(|s| (s.row.clone(), s.id, s.inv.clone(), s.multipliers.clone()))
+            .enumerate()
+            .map(|(k, s)| (lu.row(k).to_vec(), s.id, s.inv.clone(), s.multipliers.clone()))
             .collect();
         ((outcomes, stored), lu.dense_rows)
     }
