@@ -16,7 +16,7 @@
 //! the caller checks again with the laws in the placement's own arithmetic.
 
 use std::cmp::Ordering;
-use std::collections::{BTreeMap, BinaryHeap};
+use std::collections::BTreeMap;
 
 use gcs_rank::{BigRational, Field, PrimeField, RankError, Rat};
 
@@ -355,121 +355,8 @@ pub(crate) enum NoPoint {
     TooLarge,
 }
 
-/// `f` reduced completely by the monic basis `g`: each term, greatest first, is reduced by the
-/// first divisor whose leading monomial divides it, or kept. The same steps, in the same order
-/// and with the same work counted, as [`reduce_map`], by Monagan and Pearce's heap division
-/// ("Sparse polynomial division using a heap", J. Symb. Comp. 46, 2011): the terms not yet
-/// reached are those of `f` and of the multiples of divisors subtracted so far, each a sorted
-/// stream of which only the next term is in the heap, so a term costs a few comparisons
-/// against the number of streams where a map of every pending term cost a search among them.
+/// `f` reduced completely by the monic basis `g`.
 fn reduce<F: Field>(f: &Poly<F>, g: &[Poly<F>], work: &mut u64) -> Poly<F> {
-    let start = *work;
-    match reduce_heap(f, g, work) {
-        Some(r) => r,
-        None => {
-            // (An exponent past 255: the map's order of such terms is its own.)
-            *work = start;
-            reduce_map(f, g, work)
-        }
-    }
-}
-
-/// A sorted stream of terms of the heap division: `terms` times the monomial `shift`, times
-/// `−factor` (a multiple of a divisor's tail), or as they are (`f`) when `factor` is `None`.
-struct Stream<'a, F> {
-    terms: &'a [(Mono, F)],
-    shift: Mono,
-    factor: Option<F>,
-    next: usize,
-}
-
-/// The next term of a stream in the heap: its monomial and the stream's index.
-struct Head {
-    mono: Mono,
-    stream: usize,
-}
-
-impl PartialEq for Head {
-    fn eq(&self, other: &Head) -> bool {
-        self.mono == other.mono
-    }
-}
-
-impl Eq for Head {}
-
-impl Ord for Head {
-    fn cmp(&self, other: &Head) -> Ordering {
-        grevlex(&self.mono, &other.mono)
-    }
-}
-
-impl PartialOrd for Head {
-    fn partial_cmp(&self, other: &Head) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-/// [`reduce`] by the heap; `None` where `f` is not sorted or a shifted exponent overflows (the
-/// work then counted is void).
-fn reduce_heap<F: Field>(f: &Poly<F>, g: &[Poly<F>], work: &mut u64) -> Option<Poly<F>> {
-    *work += f.terms.len() as u64;
-    if f.terms.windows(2).any(|w| grevlex(&w[0].0, &w[1].0) != Ordering::Greater) {
-        return None;
-    }
-    let mut streams: Vec<Stream<'_, F>> = Vec::new();
-    let mut heap: BinaryHeap<Head> = BinaryHeap::new();
-    if let Some((m, _)) = f.terms.first() {
-        streams.push(Stream { terms: &f.terms, shift: ONE_MONO, factor: None, next: 0 });
-        heap.push(Head { mono: *m, stream: 0 });
-    }
-    let mut rest: Vec<(Mono, F)> = Vec::new();
-    let mut popped: Vec<usize> = Vec::new();
-    while let Some(top) = heap.pop() {
-        if *work > MAX_WORK {
-            // (Unfinished: every caller checks the work and gives up.)
-            break;
-        }
-        let mono = top.mono;
-        popped.clear();
-        popped.push(top.stream);
-        while heap.peek().is_some_and(|h| h.mono == mono) {
-            popped.extend(heap.pop().map(|h| h.stream));
-        }
-        // The coefficient of `mono`, and each stream moved on to its next term.
-        let mut c = F::zero();
-        for &s in &popped {
-            let stream = &mut streams[s];
-            let d = &stream.terms[stream.next].1;
-            match &stream.factor {
-                None => c = c.add(d),
-                Some(q) => c.sub_mul_assign(q, d),
-            }
-            stream.next += 1;
-            if let Some((m, _)) = stream.terms.get(stream.next) {
-                heap.push(Head { mono: product(m, &stream.shift)?, stream: s });
-            }
-        }
-        if c.is_zero() {
-            continue;
-        }
-        match g.iter().find(|h| h.lead().is_some_and(|l| divides(l, &mono))) {
-            Some(h) => {
-                let shift = quotient(&mono, &h.terms[0].0);
-                *work += h.terms.len() as u64;
-                if let Some((m, _)) = h.terms.get(1) {
-                    heap.push(Head { mono: product(m, &shift)?, stream: streams.len() });
-                    streams.push(Stream { terms: &h.terms[1..], shift, factor: Some(c), next: 0 });
-                }
-            }
-            None => rest.push((mono, c)),
-        }
-    }
-    Some(Poly { terms: rest })
-}
-
-/// [`reduce`] with the terms still to reduce in a map (the reference the heap division is
-/// tested against, and its fallback where a shifted exponent would overflow).
-fn reduce_map<F: Field>(f: &Poly<F>, g: &[Poly<F>], work: &mut u64) -> Poly<F> {
     *work += f.terms.len() as u64;
     let mut map = f.to_map();
     let mut rest: Vec<(Mono, F)> = Vec::new();
@@ -956,97 +843,6 @@ mod tests {
                     x.iter().zip(&y).map(|(p, q)| p.checked_add(*q)).collect();
                 assert_eq!(product(&x, &y).map(|m| m.to_vec()), bytes, "{x:?} {y:?}");
             }
-        }
-    }
-
-    /// A random polynomial in the first `vars` variables: up to `len` terms of degree at most
-    /// `deg` per variable (exponents from `high` up where `high` is set), coefficients small
-    /// (so that terms cancel) or any.
-    fn random_poly(
-        next: &mut dyn FnMut() -> u64,
-        vars: usize,
-        len: usize,
-        deg: u64,
-        high: Option<u8>,
-    ) -> P {
-        let mut p = P::zero();
-        for _ in 0..1 + next() % len as u64 {
-            let mut m = ONE_MONO;
-            let mut d = 0u8;
-            for e in &mut m[..vars] {
-                let low = high.unwrap_or(0);
-                *e = low.saturating_add((next() % (deg + 1)) as u8);
-                d = d.saturating_add(*e);
-            }
-            m[DEG] = d;
-            let r = next();
-            let v = if r % 2 == 0 { (r >> 8) as i64 % 5 - 2 } else { (r >> 2) as i64 };
-            p = p.add(&Poly { terms: vec![(m, ModP::from_i64(v))] });
-        }
-        p
-    }
-
-    /// The heap division against the map's on random dividends and divisor lists (monic, not
-    /// Gröbner bases: the reduction is defined for any), in 1 to 6 variables: the same
-    /// remainder and the same work, also where the work bound stops both halfway and where a
-    /// shifted exponent overflows (the heap gives way to the map).
-    #[test]
-    fn heap_division_matches_the_map() {
-        let mut next = rng();
-        let mut stopped = 0;
-        let mut fell_back = 0;
-        let mut completed = 0;
-        for round in 0..2_000 {
-            let vars = 1 + (next() % 6) as usize;
-            let high = (round % 10 == 9).then_some(250u8);
-            let f = random_poly(&mut next, vars, 40, 6, high);
-            let g: Vec<P> = (0..next() % 6)
-                .map(|_| random_poly(&mut next, vars, 8, 3, None).monic())
-                .filter(|p| !p.is_zero())
-                .collect();
-            // (Random divisors can take a reduction far: a few thousand operations left, or
-            // only a few, for a fast test.)
-            let start = MAX_WORK - if round % 7 == 3 { next() % 200 } else { 5_000 };
-            let (mut w_map, mut w_heap) = (start, start);
-            let by_map = reduce_map(&f, &g, &mut w_map);
-            let by_heap = reduce(&f, &g, &mut w_heap);
-            assert_eq!(by_heap, by_map, "{f:?} by {g:?}");
-            assert_eq!(w_heap, w_map);
-            stopped += usize::from(w_map > MAX_WORK);
-            let mut w = start;
-            fell_back += usize::from(reduce_heap(&f, &g, &mut w).is_none());
-            if w_map <= MAX_WORK && high.is_none() {
-                completed += 1;
-                // A remainder: no term divisible by a leading monomial, terms sorted.
-                assert!(
-                    by_map.terms.iter().all(|(m, _)| g.iter().all(|h| !divides(&h.terms[0].0, m)))
-                );
-                assert!(by_map.terms.windows(2).all(|w| grevlex(&w[0].0, &w[1].0).is_gt()));
-            }
-        }
-        // Each case occurred.
-        assert!(stopped > 10, "{stopped}");
-        assert!(fell_back > 10, "{fell_back}");
-        assert!(completed > 1_000, "{completed}");
-    }
-
-    /// The heap division of `f·h + r` by `h` (a single divisor whose leading monomial divides
-    /// no term of `r`) leaves `r`, on random cases.
-    #[test]
-    fn heap_division_recovers_a_remainder() {
-        let mut next = rng();
-        for _ in 0..500 {
-            let vars = 1 + (next() % 4) as usize;
-            let h = random_poly(&mut next, vars, 5, 3, None).monic();
-            if h.is_zero() || h.is_unit() {
-                continue;
-            }
-            let q = random_poly(&mut next, vars, 10, 3, None);
-            let mut r = random_poly(&mut next, vars, 10, 4, None);
-            r.terms.retain(|(m, _)| !divides(&h.terms[0].0, m));
-            let f = q.times(&h).add(&r);
-            let mut work = 0;
-            assert_eq!(reduce(&f, std::slice::from_ref(&h), &mut work), r);
         }
     }
 
