@@ -116,6 +116,26 @@ pub fn rational_reconstruction(a: &BigInt, m: &BigInt) -> Option<BigRational> {
         return None;
     }
     let bound = (m / 2u32).sqrt();
+    let reduced = a.mod_floor(m);
+    // (Lehmer's batches far from the bound, Euclid's steps near it: the same stopping step.)
+    let (_, r1, _, t1) =
+        crate::gcd::euclid_to_bound(m.magnitude(), reduced.magnitude(), bound.magnitude());
+    let r1 = BigInt::from(r1);
+    if t1.is_zero() || t1.abs() > bound || !crate::gcd::gcd_int(&r1, &t1).is_one() {
+        return None;
+    }
+    let (n, d) = if t1.is_negative() { (-r1, -t1) } else { (r1, t1) };
+    Some(BigRational::new_raw(n, d))
+}
+
+/// [`rational_reconstruction`] step by step with num-bigint's division (the reference the
+/// tests hold the batched one to).
+#[cfg(test)]
+fn rational_reconstruction_plain(a: &BigInt, m: &BigInt) -> Option<BigRational> {
+    if !m.is_positive() {
+        return None;
+    }
+    let bound = (m / 2u32).sqrt();
     let (mut r0, mut r1) = (m.clone(), a.mod_floor(m));
     let (mut t0, mut t1) = (BigInt::zero(), BigInt::one());
     while r1 > bound {
@@ -784,6 +804,44 @@ mod tests {
 
     fn q(n: i64, d: i64) -> BigRational {
         BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    #[test]
+    fn batched_reconstruction_matches_the_step_by_step_one() {
+        // Random odd moduli of 64 to 5,000 bits, against random residues (mostly no fraction)
+        // and against the residues of fractions with numerator and denominator of up to half
+        // the modulus' bits (found, or refused just past the bound).
+        let mut state = 0x2545_F491_4F6C_DD1D_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let mut big = |bits: u64, next: &mut dyn FnMut() -> u64| {
+            let words = bits.div_ceil(64) as usize;
+            let digits: Vec<u32> = (0..2 * words).map(|_| next() as u32).collect();
+            BigInt::from(num_bigint::BigUint::new(digits) >> (64 * words as u64 - bits))
+        };
+        let mut found = 0;
+        for round in 0..600 {
+            let bits = [64, 65, 127, 128, 200, 700, 1500, 5000][round % 8];
+            let m = big(bits, &mut next) | BigInt::one() | (BigInt::one() << (bits - 1));
+            let half = bits / 2;
+            let residue = if round % 3 == 0 {
+                big(bits, &mut next)
+            } else {
+                let n = big(1 + next() % half, &mut next);
+                let d = big(1 + next() % half, &mut next) | BigInt::one();
+                let Some(inv) = d.modinv(&m) else { continue };
+                let n = if next() % 2 == 0 { -n } else { n };
+                (n * inv).mod_floor(&m)
+            };
+            let batched = rational_reconstruction(&residue, &m);
+            found += usize::from(batched.is_some());
+            assert_eq!(batched, rational_reconstruction_plain(&residue, &m), "{residue} mod {m}");
+        }
+        assert!(found > 100, "only {found} fractions found: the test lost its point");
     }
 
     #[test]

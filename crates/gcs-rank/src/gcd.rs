@@ -91,6 +91,53 @@ pub(crate) fn gcd_uint(a: &BigUint, b: &BigUint) -> BigUint {
     from_limbs(&lehmer(u, v))
 }
 
+/// Euclid's algorithm on `(m, a)` (`m > a ≥ 0`) with the second cofactor, stopped at the
+/// first remainder at most `bound`: the remainders `r0 > r1` and cofactors `t0, t1` (with
+/// `r ≡ t·a mod m`) of that step, the same as step by step (Wang's rational reconstruction runs
+/// this). While `r0` has more than 64 bits beyond `bound`, Lehmer's batches take many steps at
+/// once: a batch's matrix has entries below 2^62, so its new `r0` is more than `r0 / 2^63` —
+/// still above `bound` — and no batch passes the step where the plain loop stops. The last
+/// steps, near the bound, are taken one at a time.
+pub(crate) fn euclid_to_bound(
+    m: &BigUint,
+    a: &BigUint,
+    bound: &BigUint,
+) -> (BigUint, BigUint, BigInt, BigInt) {
+    let (mut t0, mut t1) = (BigInt::zero(), BigInt::one());
+    let mut u = m.to_u64_digits();
+    let mut v = a.to_u64_digits();
+    let bound_bits = bound.bits() as usize;
+    while !v.is_empty() && from_limbs(&v) > *bound && bit_length(&u) > bound_bits + 64 {
+        let k = bit_length(&u) - LEAD;
+        let (uh, vh) = (bits_from(&u, k) as i64, bits_from(&v, k) as i64);
+        let mut state = [uh, vh, 1, 0, 0, 1];
+        while let Some(next) = certain_step(state) {
+            state = next;
+        }
+        let [_, _, a, b, c, d] = state;
+        if b == 0 {
+            let (q, r) = num_integer::Integer::div_rem(&from_limbs(&u), &from_limbs(&v));
+            let t = &t0 - BigInt::from(q) * &t1;
+            (t0, t1) = (t1, t);
+            (u, v) = (v, r.to_u64_digits());
+        } else {
+            let (t0n, t1n) = (&t0 * a + &t1 * b, &t0 * c + &t1 * d);
+            (t0, t1) = (t0n, t1n);
+            combine(&mut u, &mut v, [a, b, c, d]);
+            normalise(&mut u);
+            normalise(&mut v);
+        }
+    }
+    let (mut r0, mut r1) = (from_limbs(&u), from_limbs(&v));
+    while r1 > *bound {
+        let (q, r) = num_integer::Integer::div_rem(&r0, &r1);
+        (r0, r1) = (r1, r);
+        let t = &t0 - BigInt::from(q) * &t1;
+        (t0, t1) = (t1, t);
+    }
+    (r0, r1, t0, t1)
+}
+
 fn from_limbs(limbs: &[u64]) -> BigUint {
     let mut halves = Vec::with_capacity(2 * limbs.len());
     for &d in limbs {
