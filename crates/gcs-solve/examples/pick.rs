@@ -9,6 +9,8 @@
 //! `cargo run --release -p gcs-solve --example pick -- k33 1 2 4 8` (chains of M K3,3) or
 //! `-- strip 8 16 32` (triangulated strips: closed-form steps; the pick is step 1's other side).
 
+#![allow(clippy::print_stdout)] // An example that prints its table.
+
 use std::time::Instant;
 
 use gcs_analysis::{AnalysisOptions, analyze};

@@ -324,14 +324,16 @@ fn hold_triangle(
     let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
     let u = sub(pb, pa);
     let len = dot(u, u).sqrt();
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         return Err(Shortfall::Unsupported("a triangle held by two coincident points"));
     }
     let u = u.map(|v| v / len);
     let v = sub(pc, pa);
     let w = sub(v, u.map(|e| e * dot(v, u)));
     let wlen = dot(w, w).sqrt();
-    if !(wlen > 1e-9 * len) {
+    // (The third point's offset from the line `a–b`, against rounding: a triangle drawn in
+    // line gives no half-plane to hold it in.)
+    if wlen.is_nan() || wlen <= 1e-9 * len {
         return Err(Shortfall::Unsupported("a triangle held in line"));
     }
     let w = w.map(|e| e / wlen);
