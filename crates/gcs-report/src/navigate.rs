@@ -7,7 +7,8 @@
 //! re-assembled); "autosolve" goes back to the choices the drawing shows; "download RON" saves
 //! the realization shown.
 //!
-//! The realizations are computed here, not in the page: every combination of the core's
+//! The realizations are computed here, not in the page (a pick in the page looks a
+//! realization up; it solves nothing): every combination of the core's
 //! nodes' real candidates (by homotopy continuation, [`gcs_solve::nodes`]) and of the
 //! closed-form steps' candidates under which the consistent redundant constraints still hold
 //! ([`gcs_solve::SolveOptions::all`]), at most `limit` of them, each drawn and written as RON
@@ -37,7 +38,11 @@ pub fn navigate_page(
 ) -> Result<String, ReportError> {
     let (analysis, backend) = run::solving_analysis(system)?;
     let options = SolveOptions { all: Some(limit.max(1)), max_paths, ..SolveOptions::default() };
-    let solution = gcs_solve::solve(system, &analysis, &options).map_err(ReportError::Solve)?;
+    // The nodes' homotopies, kept for the solves of the candidates no listed realization
+    // takes: each solves again only the chosen node's parent chain.
+    let mut cache = gcs_solve::NodeCache::default();
+    let solution = gcs_solve::solve_cached(system, &analysis, &options, &mut cache)
+        .map_err(ReportError::Solve)?;
     let report = Report::new(system, file, &analysis, None);
     let nodes = solution.plan.iter().take_while(|p| p.method == Method::Newton).count();
     let (mut realizations, mut choices) = listed(&solution, nodes);
@@ -63,7 +68,10 @@ pub fn navigate_page(
                 }
                 let options =
                     SolveOptions { all: Some(1), choose: vec![(k, j)], ..options.clone() };
-                let Ok(with) = gcs_solve::solve(system, &analysis, &options) else { continue };
+                let Ok(with) = gcs_solve::solve_cached(system, &analysis, &options, &mut cache)
+                else {
+                    continue;
+                };
                 let (x, cs) = listed(&with, nodes);
                 if let (Some(x), Some(cs)) = (x.into_iter().next(), cs.into_iter().next())
                     && cs.get(c) == Some(&j)

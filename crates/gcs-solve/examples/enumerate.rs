@@ -6,7 +6,11 @@
 //!   realization, one consistent redundant distance) — the core left by the closed-form steps
 //!   is one node;
 //! - `k33 M...`: chains of M K3,3 joined by three distances (`generate::k33_chain`) — the core
-//!   splits block by block.
+//!   splits block by block;
+//! - `sphere N...`: random triangulated spheres in space on N points
+//!   (`generate::triangulated_sphere`, minimally rigid in 3D) — one node, held by a triangle;
+//! - `octahedron R`: octahedra in space at random integer coordinates in [−R, R]³ (the
+//!   octahedron has 16 complex realizations with a face held).
 //!
 //! `seconds_nodes` is the solve with every node's candidates at the drawing's choices (one
 //! realization listed: `all: Some(1)`), `seconds_all` the solve listing up to 10,000.
@@ -16,6 +20,22 @@ use std::time::Instant;
 
 use gcs_analysis::{AnalysisOptions, analyze};
 use gcs_solve::{Method, SolveOptions, solve};
+
+/// An octahedron (opposite vertices 0–5, 1–3, 2–4 not joined) at random integer coordinates
+/// in [−range, range]³, each distance at its drawn length.
+fn octahedron(range: i64, seed: u64) -> gcs_model::System {
+    use gcs_model::{Dim, generate, rng::SplitMix64};
+    let coords = generate::random_coords(6, Dim::Three, range, &mut SplitMix64::new(seed));
+    let mut edges = Vec::new();
+    for a in 0..6 {
+        for b in a + 1..6 {
+            if ![(0, 5), (1, 3), (2, 4)].contains(&(a, b)) {
+                edges.push((a, b));
+            }
+        }
+    }
+    generate::framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &edges)
+}
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -51,6 +71,8 @@ fn main() {
         for seed in 1..=seeds {
             let system = match family.as_str() {
                 "k33" => gcs_model::generate::k33_chain(n, seed),
+                "sphere" => gcs_model::generate::triangulated_sphere(n, seed),
+                "octahedron" => octahedron(n as i64, seed),
                 _ => gcs_model::generate::laman_drawn(n, seed, 0.0).0,
             };
             let analysis = analyze(&system, &options).expect("analysis");

@@ -1,4 +1,5 @@
-//! Every real realization of the core (the part of a plane sketch no closed-form step places),
+//! Every real realization of the core (the part of a sketch no closed-form step places: in
+//! space, all of it),
 //! by homotopy continuation ([`crate::homotopy`]): the candidates of the DR-plan node that the
 //! damped Newton solve reaches only one of.
 //!
@@ -6,9 +7,15 @@
 //! residuals of parameter-free constraints, the squared distance between two points minus the
 //! value squared, a radius or coordinate difference minus its value). Realizations are counted
 //! up to direct isometries, mirror images distinct (as the ESM paper and Capco et al. count):
-//! a floating core is held by one of its point-to-point distances — its first point where the
-//! solve put it, its second at the distance's value along the solved direction — and that
-//! distance is left out of the equations. Each unknown is measured from its solved value in
+//! a floating plane core is held by one of its point-to-point distances — its first point where
+//! the solve put it, its second at the distance's value along the solved direction — and that
+//! distance is left out of the equations; a floating core in space (points and distances) by a
+//! triangle of them, its three points placed by their values where the solve put them
+//! ([`hold_triangle`]: the six motions of space), its three distances left out. The counts
+//! are then those of the literature: in the plane Capco et al.'s (K3,3: 16), in space those of
+//! Emiris, Tsigaridas and Varvitsiotis (2009) and Bartzos, Emiris, Legerský and Tsigaridas
+//! (2018), who hold a triangle too (the tetrahedron: 2, the octahedron: 16). Each unknown is
+//! measured from its solved value in
 //! units of the core's size, so that the solved realization is the origin and the others are
 //! of order 1. Where the equations outnumber the unknowns (a constraint written with more
 //! equations than it removes freedoms), the lowest-degree ones are folded into the others by
@@ -51,7 +58,8 @@ pub enum Shortfall {
     /// The core was not solved to the tolerance (or a part of it has no real solution), and
     /// realizations are enumerated from a solved core only.
     Unsolved,
-    /// Not a node homotopy continuation is set up for here: why (a 3D node, entities with
+    /// Not a node homotopy continuation is set up for here: why (a 3D node of other entities
+    /// than points, entities with
     /// homogeneous coordinates or internal relations, a dimension whose measure is not
     /// polynomial, a node neither held in place nor floating rigidly with a point-to-point
     /// distance to hold it by, fewer equations than unknowns).
@@ -109,7 +117,8 @@ impl Shortfall {
 
 /// The core's real realizations over the layout's columns (the rest of `x` kept), the one
 /// nearest the solved `x` first, with the path counts; why not ([`Shortfall`]) when the core
-/// is not one this can enumerate: a 3D core, entities with homogeneous coordinates or internal
+/// is not one this can enumerate: a 3D core of other entities than points (or without a triangle
+/// of distances to hold it by), entities with homogeneous coordinates or internal
 /// relations, a dimension whose measure is not polynomial, a core that is neither held in
 /// place nor floating rigidly with a point-to-point distance to hold it by, more than 64
 /// unknowns, or more paths than `max_paths` (or [`homotopy::MAX_PATHS`]).
@@ -126,9 +135,7 @@ pub(crate) fn realizations(
     if max_paths == 0 {
         return Err(Shortfall::NotSought);
     }
-    if system.dim() != gcs_model::Dim::Two {
-        return Err(Unsupported("a 3D node"));
-    }
+    let space = system.dim() == gcs_model::Dim::Three;
     if core.is_empty() {
         return Err(Unsupported("a node without constraints"));
     }
@@ -143,58 +150,36 @@ pub(crate) fn realizations(
         {
             return Err(Unsupported("entities with homogeneous coordinates or internal relations"));
         }
+        if space && system.entity(e).kind() != gcs_model::EntityKind::Point {
+            return Err(Unsupported("a 3D node with entities other than points"));
+        }
         dof += system.entity(e).kind().dof(system.dim());
     }
     let doc: usize = core.iter().map(|&c| system.constraint(c).doc).sum();
-    let not_held =
-        Unsupported("a floating node without a dimensioned point-to-point distance to hold it by");
-    // Held in place (nothing left), or floating as a rigid whole (the three motions of the
-    // plane), held by a distance between two of its points.
-    let gauge = match dof.checked_sub(doc) {
+    // The motions of a rigid whole: three in the plane, six in space.
+    let rigid = if space { 6 } else { 3 };
+    // Held in place (nothing left), or floating as a rigid whole, held by a distance between
+    // two of its points (in space, by a triangle of them).
+    let floating = match dof.checked_sub(doc) {
         None => return Err(Unsupported("a node with more equations than freedoms")),
-        Some(d) if d > 3 => {
+        Some(0) => false,
+        Some(d) if d > rigid => {
             return Err(Unsupported("a flexible node (its realizations are not isolated)"));
         }
-        Some(1 | 2) => {
+        Some(d) if d < rigid => {
             return Err(Unsupported(
                 "a node held in place in part, or flexible (its realizations are not isolated)",
             ));
         }
-        Some(0) => None,
-        Some(3) => Some(
-            core.iter()
-                .copied()
-                .find(|&c| {
-                    let constraint = system.constraint(c);
-                    constraint.kind == ConstraintKind::Distance
-                        && constraint
-                            .value
-                            .as_ref()
-                            .is_some_and(|v| v.to_f64().is_some_and(|v| v > 0.0))
-                        && matches!(
-                            constraint.signature.metric(),
-                            Some(gcs_model::Metric::DistancePointPoint(..))
-                        )
-                })
-                .ok_or(not_held.clone())?,
-        ),
-        Some(_) => return Err(not_held),
+        Some(_) => true,
     };
-    let mut base = x.to_vec();
-    let mut held: Vec<usize> = Vec::new();
-    if let Some(g) = gauge {
-        let [a, b] = system.constraint_base_entities(g)[..] else { return Err(not_held) };
-        let (ca, cb) = (layout.columns(a), layout.columns(b));
-        let d = system.constraint(g).value.as_ref().and_then(|v| v.to_f64()).ok_or(not_held)?;
-        let u = [x[cb.start] - x[ca.start], x[cb.start + 1] - x[ca.start + 1]];
-        let len = u[0].hypot(u[1]);
-        if !(len > 0.0) {
-            return Err(Unsupported("a distance held by two coincident points"));
-        }
-        base[cb.start] = x[ca.start] + d * u[0] / len;
-        base[cb.start + 1] = x[ca.start + 1] + d * u[1] / len;
-        held.extend(ca.chain(cb));
-    }
+    let (base, held, gauge) = if !floating {
+        (x.to_vec(), Vec::new(), Vec::new())
+    } else if space {
+        hold_triangle(system, layout, core, x)?
+    } else {
+        hold_distance(system, layout, core, x)?
+    };
     let mut unknowns: Vec<usize> = Vec::new();
     for &e in &entities {
         unknowns.extend(layout.columns(e).filter(|c| !held.contains(c)));
@@ -211,6 +196,8 @@ pub(crate) fn realizations(
     let paired = entities.iter().filter(|&&e| !layout.columns(e).is_empty()).all(|&e| {
         layout.columns(e).len() == 2 && system.entity(e).kind() == gcs_model::EntityKind::Point
     }) && n % 2 == 0;
+    let equations_of: Vec<ConstraintIdx> =
+        core.iter().copied().filter(|c| !gauge.contains(c)).collect();
     let param = Param {
         n,
         base,
@@ -219,8 +206,6 @@ pub(crate) fn realizations(
         paired,
         size,
     };
-    let equations_of: Vec<ConstraintIdx> =
-        core.iter().copied().filter(|&c| Some(c) != gauge).collect();
     let (counts, found) = solve_param(
         (system, layout, equations),
         &equations_of,
@@ -231,6 +216,137 @@ pub(crate) fn realizations(
         seed,
     )?;
     Ok((counts, found.into_iter().map(|f| f.1).collect()))
+}
+
+/// How a floating node is held (the trivial motions modded out), as the configuration to
+/// start from, the columns held and the constraints that then hold by construction (left out
+/// of the equations).
+type Held = (Vec<f64>, Vec<usize>, Vec<ConstraintIdx>);
+
+/// The dimensioned point-to-point distances of `core` (a positive value), with their points.
+fn bars(
+    system: &System,
+    core: &[ConstraintIdx],
+) -> Vec<(ConstraintIdx, EntityIdx, EntityIdx, f64)> {
+    (core.iter().copied())
+        .filter_map(|c| {
+            let constraint = system.constraint(c);
+            let value = constraint.value.as_ref()?.to_f64().filter(|v| *v > 0.0)?;
+            match constraint.signature.metric() {
+                Some(gcs_model::Metric::DistancePointPoint(a, b))
+                    if constraint.kind == ConstraintKind::Distance && a != b =>
+                {
+                    Some((c, a, b, value))
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// A plane node held by its first dimensioned point-to-point distance `a–b`: `a` where the
+/// solve put it, `b` at the distance's value along the solved direction. What is left are its
+/// realizations up to direct isometries, mirror images distinct (a rotation and a translation
+/// of the plane map any placement of `a–b` to this one, and only the identity keeps it).
+fn hold_distance(
+    system: &System,
+    layout: &Layout,
+    core: &[ConstraintIdx],
+    x: &[f64],
+) -> Result<Held, Shortfall> {
+    let Some(&(g, a, b, d)) = bars(system, core).first() else {
+        return Err(Shortfall::Unsupported(
+            "a floating node without a dimensioned point-to-point distance to hold it by",
+        ));
+    };
+    let (ca, cb) = (layout.columns(a), layout.columns(b));
+    let u = [x[cb.start] - x[ca.start], x[cb.start + 1] - x[ca.start + 1]];
+    let len = u[0].hypot(u[1]);
+    if !(len > 0.0) {
+        return Err(Shortfall::Unsupported("a distance held by two coincident points"));
+    }
+    let mut base = x.to_vec();
+    base[cb.start] = x[ca.start] + d * u[0] / len;
+    base[cb.start + 1] = x[ca.start + 1] + d * u[1] / len;
+    Ok((base, ca.chain(cb).collect(), vec![g]))
+}
+
+/// A node in space held by its first triangle of dimensioned point-to-point distances
+/// `a–b`, `a–c`, `b–c` (in file order): `a` where the solve put it, `b` at the value of `a–b`
+/// along the solved direction, `c` where the three values put it in the half-plane of the
+/// solved `c` (the trivial motions of space are six: a proper rotation and a translation map
+/// any placement of a triangle to this one, and only the identity keeps it, so what is left
+/// are the realizations up to direct isometries, mirror images distinct — the mirror image
+/// in the triangle's plane is another realization). Its three distances hold by
+/// construction.
+fn hold_triangle(
+    system: &System,
+    layout: &Layout,
+    core: &[ConstraintIdx],
+    x: &[f64],
+) -> Result<Held, Shortfall> {
+    let bars = bars(system, core);
+    let length = |p: EntityIdx, q: EntityIdx| {
+        bars.iter().find(|b| (b.1, b.2) == (p, q) || (b.1, b.2) == (q, p)).map(|b| (b.0, b.3))
+    };
+    let triangle = bars.iter().enumerate().find_map(|(i, &(ab, a, b, dab))| {
+        bars[i + 1..].iter().find_map(|&(e, p, q, d)| {
+            // A second bar from `a` or from `b` to an apex `c`, and the bar that closes the
+            // triangle: as `a, b, c` with the lengths `a–b`, `a–c`, `b–c`.
+            let (apex, at_a) = match () {
+                () if p == a && q != b => (q, true),
+                () if q == a && p != b => (p, true),
+                () if p == b && q != a => (q, false),
+                () if q == b && p != a => (p, false),
+                () => return None,
+            };
+            if at_a {
+                let (bc, dbc) = length(b, apex)?;
+                Some((a, b, apex, dab, d, dbc, [ab, e, bc]))
+            } else {
+                let (ac, dac) = length(a, apex)?;
+                Some((a, b, apex, dab, dac, d, [ab, ac, e]))
+            }
+        })
+    });
+    let Some((a, b, c, dab, dac, dbc, gauge)) = triangle else {
+        return Err(Shortfall::Unsupported(
+            "a floating 3D node without a triangle of dimensioned point-to-point distances to \
+             hold it by",
+        ));
+    };
+    let at = |p: EntityIdx| {
+        let s = layout.columns(p).start;
+        [x[s], x[s + 1], x[s + 2]]
+    };
+    let (pa, pb, pc) = (at(a), at(b), at(c));
+    let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+    let u = sub(pb, pa);
+    let len = dot(u, u).sqrt();
+    if len.is_nan() || len <= 0.0 {
+        return Err(Shortfall::Unsupported("a triangle held by two coincident points"));
+    }
+    let u = u.map(|v| v / len);
+    let v = sub(pc, pa);
+    let w = sub(v, u.map(|e| e * dot(v, u)));
+    let wlen = dot(w, w).sqrt();
+    // (The third point's offset from the line `a–b`, against rounding: a triangle drawn in
+    // line gives no half-plane to hold it in.)
+    if wlen.is_nan() || wlen <= 1e-9 * len {
+        return Err(Shortfall::Unsupported("a triangle held in line"));
+    }
+    let w = w.map(|e| e / wlen);
+    // c = a + α u + β w, from |c − a| = dac and |c − b| = dbc.
+    let alpha = (dab * dab + dac * dac - dbc * dbc) / (2.0 * dab);
+    let beta = (dac * dac - alpha * alpha).max(0.0).sqrt();
+    let mut base = x.to_vec();
+    let (ca, cb, cc) = (layout.columns(a), layout.columns(b), layout.columns(c));
+    for k in 0..3 {
+        base[cb.start + k] = pa[k] + dab * u[k];
+        base[cc.start + k] = pa[k] + alpha * u[k] + beta * w[k];
+    }
+    Ok((base, ca.chain(cb).chain(cc).collect(), gauge.to_vec()))
 }
 
 /// Every real placement of rigid bodies and free points that satisfies `constraints` (each as
@@ -905,6 +1021,64 @@ pub(crate) mod tests {
         assert!(before > 1e-9, "rejected as it ends: {before:e}");
         assert!(after <= 1e-15, "accepted once refined: {after:e}");
         assert!(refined.iter().zip(&exact).all(|(a, b)| (a - b).abs() <= 1e-14), "{refined:?}");
+    }
+
+    /// A framework in space drawn at `points`, each distance at its drawn length, and its
+    /// realizations (held by its first triangle).
+    fn count_3d(points: &[[f64; 3]], edges: &[(usize, usize)]) -> (PathCounts, Vec<Vec<f64>>) {
+        let mut text = String::from("System(dim: 3, entities: [");
+        for (i, p) in points.iter().enumerate() {
+            text += &format!("Point(id: \"p{i}\", at: [{}, {}, {}]),", p[0], p[1], p[2]);
+        }
+        text += "], constraints: [";
+        for (a, b) in edges {
+            let d = (0..3).map(|k| (points[*a][k] - points[*b][k]).powi(2)).sum::<f64>().sqrt();
+            text += &format!("Distance(id: \"d{a}{b}\", a: \"p{a}\", b: \"p{b}\", value: {d}),");
+        }
+        text += "])";
+        let s = System::from_ron_str(&text, None).unwrap();
+        let layout = Layout::new(&s);
+        let eq = Equations::new(&s, &layout);
+        let x: Vec<f64> = points.iter().flat_map(|p| *p).collect();
+        let core: Vec<ConstraintIdx> = s.constraint_indices().collect();
+        let (counts, found) =
+            realizations(&s, &layout, &eq, &core, &x, (homotopy::MAX_PATHS, 1e-9), 7).unwrap();
+        // Every real one satisfies every distance, and the drawing comes first.
+        for y in &found {
+            for c in s.constraint_indices() {
+                let r = crate::relative(&s, &eq, c, y, 10.0).unwrap();
+                assert!(r <= 1e-12, "{r:e}");
+            }
+        }
+        assert!(found[0].iter().zip(&x).all(|(a, b)| (a - b).abs() < 1e-9));
+        (counts, found)
+    }
+
+    /// Bar frameworks in space, held by a triangle (realizations up to direct isometries,
+    /// mirror images distinct): the tetrahedron has 2 (its fourth point on either side of the
+    /// held face), the triangular bipyramid 4 (each pole on either side). Total degree:
+    /// 2^(3·(points − 3)) paths. (The octahedron's 16 — Emiris, Tsigaridas and Varvitsiotis
+    /// 2009; Bartzos, Emiris, Legerský and Tsigaridas 2018 — takes 512 paths, several seconds:
+    /// `cargo run --release -p gcs-solve --example enumerate -- octahedron 100`.)
+    #[test]
+    fn bar_frameworks_in_space_have_their_complex_counts() {
+        let points = [[0.3, 0.1, 0.2], [5.1, -1.4, 0.7], [2.2, 3.9, -0.4], [1.9, 1.2, 4.1]];
+        let k4 = [(0, 1), (0, 2), (1, 2), (0, 3), (1, 3), (2, 3)];
+        let (counts, found) = count_3d(&points, &k4);
+        assert_eq!((counts.paths, counts.finite, counts.failed, found.len()), (8, 2, 0, 2));
+        // The other one is the mirror image of the fourth point in the held face.
+        let moved = (9..12).map(|k| (found[1][k] - found[0][k]).powi(2)).sum::<f64>().sqrt();
+        assert!(moved > 1.0 && found[1][..9] == found[0][..9], "{found:?}");
+        let points = [
+            [0.3, 0.1, 0.2],
+            [5.1, -1.4, 0.7],
+            [2.2, 3.9, -0.4],
+            [1.9, 1.2, 4.1],
+            [2.7, 0.4, -3.6],
+        ];
+        let bipyramid = [(0, 1), (0, 2), (1, 2), (0, 3), (1, 3), (2, 3), (0, 4), (1, 4), (2, 4)];
+        let (counts, found) = count_3d(&points, &bipyramid);
+        assert_eq!((counts.paths, counts.finite, counts.failed, found.len()), (64, 4, 0, 4));
     }
 
     /// The counts of Capco, Gallet, Grasegger, Koutschan, Lubbes and Schicho (2018), complex

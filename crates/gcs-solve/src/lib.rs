@@ -883,6 +883,39 @@ struct Placed {
     confidence: f64,
 }
 
+/// The core nodes' homotopies of earlier solves of one model, for the next solve of it
+/// ([`solve_cached`]): what a navigator keeps between picks, so that choosing a node's
+/// candidate solves again only the nodes whose children changed — its parent chain — instead
+/// of every node. Kept while the solved core and its DR-plan are the same (the same model,
+/// drawing and tolerance: the solve is deterministic); emptied otherwise.
+#[derive(Debug, Default)]
+pub struct NodeCache {
+    /// The solved core, the nodes and the tolerance the homotopies were run at.
+    at: Option<(Vec<u64>, Vec<nodes::Node>, u64)>,
+    homotopies: std::cell::RefCell<nodes::Homotopies>,
+}
+
+impl NodeCache {
+    /// The node homotopies kept.
+    pub fn len(&self) -> usize {
+        self.homotopies.borrow().len()
+    }
+
+    /// Whether none is kept.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Keeps what it has if it was computed at `x` with `nodes` and `tolerance`; else empties.
+    fn at(&mut self, x: &[f64], nodes: &[nodes::Node], tolerance: f64) {
+        let at = (x.iter().map(|v| v.to_bits()).collect(), nodes.to_vec(), tolerance.to_bits());
+        if self.at.as_ref() != Some(&at) {
+            self.homotopies.get_mut().clear();
+            self.at = Some(at);
+        }
+    }
+}
+
 /// Solves `system` at its values, from its drawing, leaving out the constraints `analysis`
 /// finds fully redundant and measuring them at the solution: the core numerically, then the
 /// points given by two conditions in closed form (see the crate documentation).
@@ -893,6 +926,21 @@ pub fn solve(
     system: &System,
     analysis: &Analysis,
     options: &SolveOptions,
+) -> Result<Solution, SolveError> {
+    solve_cached(system, analysis, options, &mut NodeCache::default())
+}
+
+/// [`solve`], reusing the core nodes' homotopies that `cache` keeps from earlier solves of the
+/// same model and keeping this solve's there: the same solution, with only the nodes whose
+/// children's choices are new solved again (a navigator's pick: the node's parent chain).
+///
+/// # Errors
+/// As [`solve`].
+pub fn solve_cached(
+    system: &System,
+    analysis: &Analysis,
+    options: &SolveOptions,
+    cache: &mut NodeCache,
 ) -> Result<Solution, SolveError> {
     let layout = Layout::new(system);
     if layout.ncols() > options.max_unknowns {
@@ -1043,6 +1091,8 @@ pub fn solve(
     let mut backtracked = 0;
     // The core's DR-plan at the solved core, to enumerate its nodes' candidates.
     let solved_core = x.clone();
+    cache.at(&solved_core, &core_nodes, options.tolerance);
+    let cache: &NodeCache = cache;
     let enumerator = enumerable.then(|| {
         let mut enumerator = nodes::Enumerator::new(
             system,
@@ -1055,6 +1105,7 @@ pub fn solve(
         );
         enumerator.orientations = core_orientations.clone();
         enumerator.tolerance = options.tolerance;
+        enumerator.homotopies = Some(&cache.homotopies);
         enumerator
     });
     // Each node's candidates at the choices `picks`, and the chosen ones, into the plan.

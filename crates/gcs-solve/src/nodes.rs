@@ -288,7 +288,21 @@ pub(crate) struct Enumerator<'a> {
     drawing: std::cell::Cell<Option<&'a [f64]>>,
     /// The most paths of a node's homotopy during the search (`max_paths` otherwise).
     path_cap: std::cell::Cell<usize>,
+    /// Every homotopy run, and those of earlier solves of the same model at the same solved
+    /// core ([`crate::NodeCache`]), when kept: a node whose children's choices are unchanged
+    /// is not solved again (each still counts against the budget, so that a solve is the same
+    /// with or without them).
+    pub(crate) homotopies: Option<&'a std::cell::RefCell<Homotopies>>,
 }
+
+/// What a node's homotopy found (its path counts and each real candidate as record and
+/// configuration), or why it was not run.
+pub(crate) type Found = Result<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>), Shortfall>;
+
+/// The homotopies' results kept across solves ([`crate::NodeCache`]): by node, the choices of
+/// the nodes below it (which fix its children's configurations) and the most paths it was
+/// allowed.
+pub(crate) type Homotopies = std::collections::HashMap<(usize, Choices, usize), Found>;
 
 /// A choice a node does not offer: the node, the candidate asked for, why not.
 pub(crate) type Refused = (usize, usize, String);
@@ -350,15 +364,29 @@ impl<'a> Enumerator<'a> {
             orientations: Vec::new(),
             drawing: std::cell::Cell::new(None),
             path_cap: std::cell::Cell::new(usize::MAX),
+            homotopies: None,
         }
     }
 
     /// Node `k`'s candidates with its children at `children` (configurations, in the order
     /// of `Node::children`); `own`: they are the drawing's, so the solved configuration is
     /// one of them, and comes first.
+    #[cfg(test)]
     pub(crate) fn candidates(&self, k: usize, children: &[&[f64]], own: bool) -> Candidates {
+        self.candidates_below(k, None, children, own)
+    }
+
+    /// [`Enumerator::candidates`], its homotopy kept in [`Enumerator::homotopies`] under the
+    /// choices `below` of the nodes below it, when given.
+    fn candidates_below(
+        &self,
+        k: usize,
+        below: Option<&[usize]>,
+        children: &[&[f64]],
+        own: bool,
+    ) -> Candidates {
         let node = &self.nodes[k];
-        let (mut candidates, mut configs) = self.unfiltered(k, children, own);
+        let (mut candidates, mut configs) = self.unfiltered(k, below, children, own);
         // The orientation conditions on the node's points prune its candidates.
         let on: Vec<&gcs_model::Orientation> = (self.orientations.iter().copied())
             .filter(|o| o.points.iter().all(|p| node.entities.contains(p)))
@@ -416,7 +444,13 @@ impl<'a> Enumerator<'a> {
 
     /// [`Enumerator::candidates`] before the orientation conditions, with each candidate's
     /// configuration.
-    fn unfiltered(&self, k: usize, children: &[&[f64]], own: bool) -> (Candidates, Vec<Vec<f64>>) {
+    fn unfiltered(
+        &self,
+        k: usize,
+        below: Option<&[usize]>,
+        children: &[&[f64]],
+        own: bool,
+    ) -> (Candidates, Vec<Vec<f64>>) {
         let node = &self.nodes[k];
         let seed = 0x5eed ^ (k as u64).wrapping_mul(0x9E37_79B9);
         let placed = !node.children.is_empty();
@@ -433,10 +467,16 @@ impl<'a> Enumerator<'a> {
         }
         let (bodies, free) = self.bodies(k, children);
         // Each candidate as (record, configuration).
-        let found: Result<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>), Shortfall> = if self.budget.get()
-            == 0
-        {
+        let max_paths = self.max_paths.min(self.path_cap.get());
+        let kept = self.homotopies.filter(|_| below.is_some());
+        let key = below.filter(|_| kept.is_some()).map(|b| (k, b.to_vec(), max_paths));
+        let found: Found = if self.budget.get() == 0 {
             Err(Shortfall::Budget { homotopies: self.budget_size.get() })
+        } else if let Some(kept) =
+            key.as_ref().zip(kept).and_then(|(key, h)| h.borrow().get(key).cloned())
+        {
+            self.budget.set(self.budget.get() - 1);
+            kept
         } else if !placed {
             self.budget.set(self.budget.get() - 1);
             alternatives::realizations(
@@ -445,7 +485,7 @@ impl<'a> Enumerator<'a> {
                 self.equations,
                 &node.constraints,
                 self.x,
-                (self.max_paths.min(self.path_cap.get()), self.tolerance),
+                (max_paths, self.tolerance),
                 seed,
             )
             .map(|(counts, list)| (counts, list.into_iter().map(|y| (y.clone(), y)).collect()))
@@ -457,7 +497,7 @@ impl<'a> Enumerator<'a> {
                 &free,
                 &node.constraints,
                 self.x,
-                (self.max_paths.min(self.path_cap.get()), self.tolerance),
+                (max_paths, self.tolerance),
                 seed,
             )
             .map(|(counts, list)| {
@@ -470,6 +510,11 @@ impl<'a> Enumerator<'a> {
                 (counts, pairs)
             })
         };
+        if let (Some(key), Some(h)) = (key, kept)
+            && !matches!(found, Err(Shortfall::Budget { .. }))
+        {
+            h.borrow_mut().entry(key).or_insert_with(|| found.clone());
+        }
         // The drawing's candidate: the solved configuration (for a node, its children where
         // they are).
         let drawing = || -> (Vec<f64>, Vec<f64>) {
@@ -736,7 +781,7 @@ impl<'a> Enumerator<'a> {
         if let Some(c) = self.known.borrow().get(&key) {
             return c.clone();
         }
-        let c = self.candidates(k, children, own);
+        let c = self.candidates_below(k, Some(below), children, own);
         self.known.borrow_mut().insert(key, c.clone());
         c
     }
@@ -818,6 +863,37 @@ mod tests {
                 "{y:?} not assembled"
             );
         }
+    }
+
+    /// `homotopy-budget`: a node reached after the solve's budget of node homotopies was
+    /// spent is not solved, and says so (with the budget); the drawing's own candidate is
+    /// still offered where its children are the drawing's. (Through [`crate::solve`] the
+    /// chosen path's nodes are all solved before any budget runs out — the enumeration that
+    /// spends it reports `node-homotopies` in `bounds_hit` instead — so the reason is checked
+    /// here, on the enumerator itself.)
+    #[test]
+    fn a_node_past_the_budget_says_so() {
+        let prism = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)];
+        let points = [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.6, 5.7]];
+        let (s, nodes) = enumerate(&points, &prism);
+        let layout = Layout::new(&s);
+        let eq = Equations::new(&s, &layout);
+        let x: Vec<f64> = points.iter().flat_map(|p| [p[0], p[1]]).collect();
+        let e = Enumerator::new(&s, &layout, &eq, &nodes, &x, 10.0, MAX_PATHS);
+        e.budget.set(2);
+        let (_, found, _) = e.choose(&[None, None, None]).unwrap();
+        assert!(found[..2].iter().all(|c| c.complete && c.counts.is_some()));
+        let root = &found[2];
+        assert_eq!(root.shortfall, vec![Shortfall::Budget { homotopies: MAX_ASSEMBLIES }]);
+        assert!(!root.complete && root.counts.is_none());
+        assert_eq!((root.list.len(), root.drawn_first), (1, true), "the drawing's own");
+        // Off the drawing's choices, nothing: the combination is not offered.
+        let e = Enumerator::new(&s, &layout, &eq, &nodes, &x, 10.0, MAX_PATHS);
+        e.budget.set(2);
+        assert!(e.choose(&[Some(1), None, None]).is_err());
+        let (listed, cut) = e.all(&[None, None, None], 100);
+        assert_eq!(cut, vec![crate::Bound::NodeHomotopies]);
+        assert_eq!(listed.len(), 1, "only the drawing's combination");
     }
 
     /// Two K3,3 joined by three distances (the witness paper's figure 8a): two leaves of 70

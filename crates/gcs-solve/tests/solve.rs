@@ -989,3 +989,36 @@ fn the_solutions_limit_is_a_bound_hit() {
     let every = solve_with(&s, &SolveOptions { all: Some(1000), ..SolveOptions::default() });
     assert!(!every.truncated && every.bounds_hit.is_empty(), "{:?}", every.bounds_hit);
 }
+
+/// A pick with the nodes' homotopies kept (`solve_cached`, what `gcs navigate` runs for each
+/// candidate its listing did not reach) is the same solve as afresh, and solves again only the
+/// picked node's parent chain: in the prism (two triangles, then their assembly), choosing the
+/// first triangle's other candidate runs the assembly's homotopies (for each combination the
+/// listing visits) but neither triangle's, where a fresh solve runs those too.
+#[test]
+fn a_pick_with_kept_homotopies_solves_only_its_parent_chain() {
+    let s = prism_with("");
+    let analysis = analyze(&s, &AnalysisOptions::default()).unwrap();
+    let first = SolveOptions { all: Some(1), ..SolveOptions::default() };
+    let mut cache = gcs_solve::NodeCache::default();
+    let drawn = gcs_solve::solve_cached(&s, &analysis, &first, &mut cache).unwrap();
+    assert_eq!((drawn.plan[2].children.clone(), cache.len()), (vec![0, 1], 3));
+    let pick = SolveOptions { choose: vec![(0, 1)], ..first.clone() };
+    let kept = gcs_solve::solve_cached(&s, &analysis, &pick, &mut cache).unwrap();
+    let mut fresh_cache = gcs_solve::NodeCache::default();
+    let fresh = gcs_solve::solve_cached(&s, &analysis, &pick, &mut fresh_cache).unwrap();
+    // The fresh pick ran both triangles and some assemblies; the kept one those assemblies only.
+    let new = cache.len() - 3;
+    assert!(new >= 1 && new + 2 == fresh_cache.len(), "{new} {}", fresh_cache.len());
+    assert_eq!((kept.x.clone(), kept.plan.clone()), (fresh.x.clone(), fresh.plan.clone()));
+    assert_eq!(kept.plan[0].chosen, Some(1));
+    assert!(distances_hold(&s, &kept.x));
+    // Another drawing (other lengths) empties the cache rather than reuse what does not apply.
+    let points: [[f64; 2]; 6] =
+        [[0.0, 0.0], [3.1, 0.4], [1.2, 2.9], [4.3, 3.3], [-0.7, 4.1], [2.9, 5.2]];
+    let edges = [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)];
+    let other = framework(&points, &edges, "");
+    let analysis = analyze(&other, &AnalysisOptions::default()).unwrap();
+    gcs_solve::solve_cached(&other, &analysis, &first, &mut cache).unwrap();
+    assert_eq!(cache.len(), 3);
+}
