@@ -77,6 +77,11 @@ pub struct LmOptions {
     pub sparse_above: usize,
     /// The damping update.
     pub damping: Damping,
+    /// Geodesic acceleration (Transtrum and Sethna, 2012), with Nielsen's damping only: each
+    /// step corrected by half the second-order term along it, from one more residual
+    /// evaluation and one more solve with the same factor — what follows a long curved valley
+    /// (a near-flex of a large sketch) in fewer steps.
+    pub acceleration: bool,
 }
 
 impl Default for LmOptions {
@@ -88,6 +93,7 @@ impl Default for LmOptions {
             max_unknowns: 3000,
             sparse_above: 400,
             damping: Damping::Fixed,
+            acceleration: false,
         }
     }
 }
@@ -193,7 +199,8 @@ pub fn levenberg_marquardt(
                 (g, top, damping, 0.0)
             }
         };
-        let step = normal.solve(&g, shift);
+        let factor = normal.factor(shift);
+        let step = factor.as_ref().and_then(|f| f.solve(&g));
         let Some(step) = step else {
             match &mut schedule {
                 Schedule::Fixed { lambda } => {
@@ -209,7 +216,44 @@ pub fn levenberg_marquardt(
         if matches!(schedule, Schedule::Nielsen { .. }) && !finite(&step) {
             break;
         }
-        let candidate: Vec<f64> = (0..n).map(|i| x[i] - step[i]).collect();
+        let mut candidate: Vec<f64> = (0..n).map(|i| x[i] - step[i]).collect();
+        if options.acceleration && matches!(schedule, Schedule::Nielsen { .. }) {
+            if let Some(f) = factor.as_ref() {
+                // Geodesic acceleration (Transtrum and Sethna, "Improvements to the
+                // Levenberg–Marquardt algorithm for nonlinear least-squares minimization",
+                // 2012): the second directional derivative along the velocity v = −step,
+                // r_vv ≈ (2/δ)·((r(x + δv) − r(x))/δ − J v), gives the acceleration
+                // a = −(JᵀJ + μI)⁻¹ Jᵀ r_vv with the same factor; the step is v + a/2, taken
+                // when |a| ≤ 0.375·|v| (else the plain step).
+                let delta = 0.1;
+                let probe: Vec<f64> = (0..n).map(|i| x[i] - delta * step[i]).collect();
+                let (rp, _) = problem.evaluate(&probe);
+                let mut gvv = Mat::<f64>::zeros(n, 1);
+                for (k, row) in j.iter().enumerate().take(rp.len().min(r.len())) {
+                    let jv: f64 = row
+                        .entries()
+                        .iter()
+                        .filter(|(c, _)| *c < n)
+                        .map(|&(c, v)| -v * step[c])
+                        .sum();
+                    let rvv = 2.0 / delta * ((rp[k] - r[k]) / delta - jv);
+                    for &(c, v) in row.entries() {
+                        if c < n {
+                            gvv[(c, 0)] += v * rvv;
+                        }
+                    }
+                }
+                if let Some(a) = f.solve(&gvv) {
+                    let na: f64 = a.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    let nv: f64 = step.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    if 2.0 * na <= 0.75 * nv {
+                        for i in 0..n {
+                            candidate[i] -= 0.5 * a[i];
+                        }
+                    }
+                }
+            }
+        }
         let (r2, j2) = problem.evaluate(&candidate);
         let cost2: f64 = r2.iter().map(|v| v * v).sum();
         let accepted = cost2 < cost;
@@ -228,7 +272,8 @@ pub fn levenberg_marquardt(
                 if accepted {
                     // The decrease of |r|² the linear model predicts for the step x − h:
                     // hᵀ(μh + Jᵀr).
-                    let predicted: f64 = (0..n).map(|i| step[i] * (damping * step[i] + g[(i, 0)])).sum();
+                    let predicted: f64 =
+                        (0..n).map(|i| step[i] * (damping * step[i] + g[(i, 0)])).sum();
                     let rho = (cost - cost2) / predicted.max(f64::MIN_POSITIVE);
                     *mu = Some(damping * (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0));
                     *nu = 2.0;
@@ -327,9 +372,9 @@ impl Normal {
         }
     }
 
-    /// The damped Gauss–Newton step `(JᵀJ + μ·I)⁻¹ g`; `None` when the damped matrix is not
-    /// numerically positive definite (or, sparse, the step is not finite).
-    fn solve(&mut self, g: &Mat<f64>, mu: f64) -> Option<Vec<f64>> {
+    /// The Cholesky factor of `JᵀJ + μ·I` (`None` when it is not numerically positive
+    /// definite), for one or more right-hand sides.
+    fn factor(&mut self, mu: f64) -> Option<Factor> {
         match self {
             Normal::Dense(h) => {
                 let n = h.nrows();
@@ -337,11 +382,32 @@ impl Normal {
                 for i in 0..n {
                     h[(i, i)] += mu;
                 }
-                let llt = h.llt(Side::Lower).ok()?;
-                let step = llt.solve(g);
-                Some((0..n).map(|i| step[(i, 0)]).collect())
+                Some(Factor::Dense(h.llt(Side::Lower).ok()?))
             }
-            Normal::Sparse(s) => s.solve(g, mu),
+            Normal::Sparse(s) => Some(Factor::Sparse(s.factor(mu)?)),
+        }
+    }
+}
+
+/// A factorised damped normal matrix.
+enum Factor {
+    Dense(faer::linalg::solvers::Llt<f64>),
+    Sparse(Llt<usize, f64>),
+}
+
+impl Factor {
+    /// `(JᵀJ + μ·I)⁻¹ g`; `None` when a sparse solve is not finite.
+    fn solve(&self, g: &Mat<f64>) -> Option<Vec<f64>> {
+        match self {
+            Factor::Dense(llt) => {
+                let step = llt.solve(g);
+                Some((0..g.nrows()).map(|i| step[(i, 0)]).collect())
+            }
+            Factor::Sparse(llt) => {
+                let step = llt.solve(g);
+                let step: Vec<f64> = (0..g.nrows()).map(|i| step[(i, 0)]).collect();
+                step.iter().all(|v| v.is_finite()).then_some(step)
+            }
         }
     }
 }
@@ -395,7 +461,7 @@ impl SparseNormal {
         (g, top)
     }
 
-    fn solve(&mut self, g: &Mat<f64>, mu: f64) -> Option<Vec<f64>> {
+    fn factor(&mut self, mu: f64) -> Option<Llt<usize, f64>> {
         let (col_ptr, row_idx, values) = &self.matrix;
         let n = col_ptr.len() - 1;
         let mut values = values.clone();
@@ -414,11 +480,7 @@ impl SparseNormal {
             SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone()),
             values,
         );
-        let llt =
-            Llt::try_new_with_symbolic(symbolic.clone(), matrix.as_ref(), Side::Lower).ok()?;
-        let step = llt.solve(g);
-        let step: Vec<f64> = (0..n).map(|i| step[(i, 0)]).collect();
-        step.iter().all(|v| v.is_finite()).then_some(step)
+        Llt::try_new_with_symbolic(symbolic.clone(), matrix.as_ref(), Side::Lower).ok()
     }
 }
 
@@ -512,6 +574,35 @@ mod tests {
             damping: Damping::Nielsen { stall: 20 },
             ..LmOptions::default()
         }
+    }
+
+    /// Rosenbrock's valley as residuals, r = (10·(y − x²), 1 − x): both runs reach (1, 1), and
+    /// geodesic acceleration follows the curved valley in no more steps than without.
+    #[test]
+    fn acceleration_follows_a_curved_valley() {
+        struct Rosenbrock;
+        impl Residuals for Rosenbrock {
+            fn unknowns(&self) -> usize {
+                2
+            }
+            fn evaluate(&self, x: &[f64]) -> (Vec<f64>, Vec<SparseRow<f64>>) {
+                (
+                    vec![10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0]],
+                    vec![
+                        SparseRow::from_entries(vec![(0, -20.0 * x[0]), (1, 10.0)]),
+                        SparseRow::from_entries(vec![(0, -1.0)]),
+                    ],
+                )
+            }
+        }
+        let plain = levenberg_marquardt(&Rosenbrock, &[-1.2, 1.0], &nielsen()).unwrap();
+        let options = LmOptions { acceleration: true, ..nielsen() };
+        let fast = levenberg_marquardt(&Rosenbrock, &[-1.2, 1.0], &options).unwrap();
+        for out in [&plain, &fast] {
+            assert!(out.converged, "{out:?}");
+            assert!((out.x[0] - 1.0).abs() < 1e-9 && (out.x[1] - 1.0).abs() < 1e-9, "{out:?}");
+        }
+        assert!(fast.iterations <= plain.iterations, "{fast:?} {plain:?}");
     }
 
     /// A free triangle of distances 3, 4, 5 (three trivial motions): the steps are orthogonal

@@ -69,6 +69,12 @@ use num_traits::ToPrimitive;
 /// drawing gives up (and the homotopy takes over).
 const STALL: usize = 20;
 
+/// Above this many unknowns the Levenberg–Marquardt run straight from the drawing takes
+/// geodesic acceleration ([`LmOptions::acceleration`]): on 1000-point Laman cores it halves
+/// the steps (BENCHMARKS.md, "fifteenth session"); below, where a few steps suffice, the solve
+/// is left as it was (the corpus' reports unchanged to the bit).
+const ACCELERATE_ABOVE: usize = 400;
+
 /// Options of [`solve`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveOptions {
@@ -525,6 +531,7 @@ impl<'s> Problem<'s> {
                 max_unknowns: usize::MAX,
                 sparse_above: 0,
                 damping: Damping::Nielsen { stall: STALL },
+                acceleration: y.len() > ACCELERATE_ABOVE,
                 ..LmOptions::default()
             },
         ) else {
