@@ -118,7 +118,7 @@ pub use exact::{
 };
 pub use field::Field;
 pub use float::float_rank_qr;
-pub use lsq::{LmOptions, LmOutcome, Residuals, levenberg_marquardt};
+pub use lsq::{Damping, LmOptions, LmOutcome, Residuals, levenberg_marquardt};
 pub use modp::{
     ModP, ModPrime, ModQ, PrimeField, TURN_PERIOD, TURN_PRIME, WITNESS_PRIMES, modulus,
     with_modulus,

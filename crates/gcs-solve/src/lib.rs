@@ -54,7 +54,6 @@
 pub mod alternatives;
 pub mod closed;
 pub mod homotopy;
-mod newton;
 pub mod nodes;
 pub mod plan;
 
@@ -63,8 +62,18 @@ use std::cell::RefCell;
 use gcs_analysis::Analysis;
 use gcs_jacobian::{Equations, Layout};
 use gcs_model::{ConstraintIdx, EntityIdx, System};
-use gcs_rank::{BigRational, LmOptions, Residuals, SparseRow, levenberg_marquardt};
+use gcs_rank::{BigRational, Damping, LmOptions, Residuals, SparseRow, levenberg_marquardt};
 use num_traits::ToPrimitive;
+
+/// Steps without `|r|²` halving after which the Levenberg–Marquardt run straight from the
+/// drawing gives up (and the homotopy takes over).
+const STALL: usize = 20;
+
+/// Above this many unknowns the Levenberg–Marquardt run straight from the drawing takes
+/// geodesic acceleration ([`LmOptions::acceleration`]): on 1000-point Laman cores it halves
+/// the steps (BENCHMARKS.md, "fifteenth session"); below, where a few steps suffice, the solve
+/// is left as it was (the corpus' reports unchanged to the bit).
+const ACCELERATE_ABOVE: usize = 400;
 
 /// Options of [`solve`].
 #[derive(Clone, Debug, PartialEq)]
@@ -506,21 +515,28 @@ impl<'s> Problem<'s> {
         (iterations, converged)
     }
 
-    /// Levenberg–Marquardt straight at the system from `x` ([`newton`]), before any
-    /// homotopy: `Some(steps)` with `x` solved when it converges and turns no triangle of
+    /// Levenberg–Marquardt straight at the system from `x`, before any homotopy, with
+    /// Nielsen's damping update and sparse steps ([`Damping::Nielsen`], stopped after
+    /// [`STALL`] steps without `|r|²` halving): `Some(steps)` with `x` solved when it converges and turns no triangle of
     /// distances among the problem's points against their turn at `x`; `None` with `x`
     /// untouched otherwise (the homotopy then starts from `x`).
     fn direct(&self, x: &mut [f64], options: &SolveOptions) -> Option<usize> {
         let y = self.gather(x);
-        let outcome = newton::levenberg_marquardt(
+        let Some(outcome) = levenberg_marquardt(
             self,
             &y,
-            &newton::NewtonOptions {
+            &LmOptions {
                 tolerance: options.tolerance * 1e-5,
                 max_iterations: options.max_iterations,
-                ..newton::NewtonOptions::default()
+                max_unknowns: usize::MAX,
+                sparse_above: 0,
+                damping: Damping::Nielsen { stall: STALL },
+                acceleration: y.len() > ACCELERATE_ABOVE,
+                ..LmOptions::default()
             },
-        );
+        ) else {
+            return None;
+        };
         if !outcome.converged {
             return None;
         }
