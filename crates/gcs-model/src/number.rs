@@ -105,7 +105,7 @@ fn small_decimal(int_part: &str, frac_part: &str, scale: i64) -> Option<BigRatio
     let twos = mantissa.trailing_zeros().min(k);
     mantissa >>= twos;
     let mut fives = 0;
-    while fives < k && mantissa % 5 == 0 {
+    while fives < k && mantissa.is_multiple_of(5) {
         mantissa /= 5;
         fives += 1;
     }

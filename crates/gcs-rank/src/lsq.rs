@@ -178,8 +178,8 @@ pub fn levenberg_marquardt(
         if let Schedule::Nielsen { stall, history, .. } = &mut schedule {
             history.push_back(cost);
             // NaN-safe: a cost that is not below half of it `stall` steps ago is a stall.
-            if history.len() > *stall && history.pop_front().is_some_and(|old| !(cost <= 0.5 * old))
-            {
+            let halved = |old: f64| cost.partial_cmp(&(0.5 * old)).is_some_and(|o| o.is_le());
+            if history.len() > *stall && history.pop_front().is_some_and(|old| !halved(old)) {
                 break;
             }
         }
@@ -217,39 +217,36 @@ pub fn levenberg_marquardt(
             break;
         }
         let mut candidate: Vec<f64> = (0..n).map(|i| x[i] - step[i]).collect();
-        if options.acceleration && matches!(schedule, Schedule::Nielsen { .. }) {
-            if let Some(f) = factor.as_ref() {
-                // Geodesic acceleration (Transtrum and Sethna, "Improvements to the
-                // Levenberg–Marquardt algorithm for nonlinear least-squares minimization",
-                // 2012): the second directional derivative along the velocity v = −step,
-                // r_vv ≈ (2/δ)·((r(x + δv) − r(x))/δ − J v), gives the acceleration
-                // a = −(JᵀJ + μI)⁻¹ Jᵀ r_vv with the same factor; the step is v + a/2, taken
-                // when |a| ≤ 0.375·|v| (else the plain step).
-                let delta = 0.1;
-                let probe: Vec<f64> = (0..n).map(|i| x[i] - delta * step[i]).collect();
-                let (rp, _) = problem.evaluate(&probe);
-                let mut gvv = Mat::<f64>::zeros(n, 1);
-                for (k, row) in j.iter().enumerate().take(rp.len().min(r.len())) {
-                    let jv: f64 = row
-                        .entries()
-                        .iter()
-                        .filter(|(c, _)| *c < n)
-                        .map(|&(c, v)| -v * step[c])
-                        .sum();
-                    let rvv = 2.0 / delta * ((rp[k] - r[k]) / delta - jv);
-                    for &(c, v) in row.entries() {
-                        if c < n {
-                            gvv[(c, 0)] += v * rvv;
-                        }
+        if options.acceleration
+            && matches!(schedule, Schedule::Nielsen { .. })
+            && let Some(f) = factor.as_ref()
+        {
+            // Geodesic acceleration (Transtrum and Sethna, "Improvements to the
+            // Levenberg–Marquardt algorithm for nonlinear least-squares minimization",
+            // 2012): the second directional derivative along the velocity v = −step,
+            // r_vv ≈ (2/δ)·((r(x + δv) − r(x))/δ − J v), gives the acceleration
+            // a = −(JᵀJ + μI)⁻¹ Jᵀ r_vv with the same factor; the step is v + a/2, taken
+            // when |a| ≤ 0.375·|v| (else the plain step).
+            let delta = 0.1;
+            let probe: Vec<f64> = (0..n).map(|i| x[i] - delta * step[i]).collect();
+            let (rp, _) = problem.evaluate(&probe);
+            let mut gvv = Mat::<f64>::zeros(n, 1);
+            for (k, row) in j.iter().enumerate().take(rp.len().min(r.len())) {
+                let jv: f64 =
+                    row.entries().iter().filter(|(c, _)| *c < n).map(|&(c, v)| -v * step[c]).sum();
+                let rvv = 2.0 / delta * ((rp[k] - r[k]) / delta - jv);
+                for &(c, v) in row.entries() {
+                    if c < n {
+                        gvv[(c, 0)] += v * rvv;
                     }
                 }
-                if let Some(a) = f.solve(&gvv) {
-                    let na: f64 = a.iter().map(|v| v * v).sum::<f64>().sqrt();
-                    let nv: f64 = step.iter().map(|v| v * v).sum::<f64>().sqrt();
-                    if 2.0 * na <= 0.75 * nv {
-                        for i in 0..n {
-                            candidate[i] -= 0.5 * a[i];
-                        }
+            }
+            if let Some(a) = f.solve(&gvv) {
+                let na: f64 = a.iter().map(|v| v * v).sum::<f64>().sqrt();
+                let nv: f64 = step.iter().map(|v| v * v).sum::<f64>().sqrt();
+                if 2.0 * na <= 0.75 * nv {
+                    for i in 0..n {
+                        candidate[i] -= 0.5 * a[i];
                     }
                 }
             }
