@@ -108,13 +108,7 @@ pub(crate) fn euclid_to_bound(
     let mut v = a.to_u64_digits();
     let bound_bits = bound.bits() as usize;
     while !v.is_empty() && from_limbs(&v) > *bound && bit_length(&u) > bound_bits + 64 {
-        let k = bit_length(&u) - LEAD;
-        let (uh, vh) = (bits_from(&u, k) as i64, bits_from(&v, k) as i64);
-        let mut state = [uh, vh, 1, 0, 0, 1];
-        while let Some(next) = certain_step(state) {
-            state = next;
-        }
-        let [_, _, a, b, c, d] = state;
+        let [a, b, c, d] = cosequence(&u, &v);
         if b == 0 {
             let (q, r) = num_integer::Integer::div_rem(&from_limbs(&u), &from_limbs(&v));
             let t = &t0 - BigInt::from(q) * &t1;
@@ -205,14 +199,7 @@ fn lehmer(mut u: Vec<u64>, mut v: Vec<u64>) -> Vec<u64> {
         if v.len() == 1 {
             return vec![gcd_u64(v[0], rem_word(&u, v[0]))];
         }
-        let k = bit_length(&u) - LEAD;
-        let (uh, vh) = (bits_from(&u, k) as i64, bits_from(&v, k) as i64);
-        // The cosequence: the current pair is (a·u + b·v, c·u + d·v).
-        let mut state = [uh, vh, 1, 0, 0, 1];
-        while let Some(next) = certain_step(state) {
-            state = next;
-        }
-        let [_, _, a, b, c, d] = state;
+        let [a, b, c, d] = cosequence(&u, &v);
         if b == 0 {
             (u, v) = euclid_step(&u, v);
         } else {
@@ -221,6 +208,20 @@ fn lehmer(mut u: Vec<u64>, mut v: Vec<u64>) -> Vec<u64> {
             normalise(&mut v);
         }
     }
+}
+
+/// The matrix `[a, b, c, d]` of the steps of Euclid's algorithm that the leading 62 bits of
+/// `u ≥ v` (normalised, `u` longer than one word) determine: the pair after them is
+/// `(a·u + b·v, c·u + d·v)`; `b = 0` when not even one step is certain.
+fn cosequence(u: &[u64], v: &[u64]) -> [i64; 4] {
+    let k = bit_length(u) - LEAD;
+    let (uh, vh) = (bits_from(u, k) as i64, bits_from(v, k) as i64);
+    let mut state = [uh, vh, 1, 0, 0, 1];
+    while let Some(next) = certain_step(state) {
+        state = next;
+    }
+    let [_, _, a, b, c, d] = state;
+    [a, b, c, d]
 }
 
 /// One step of Euclid's algorithm on the leading words `[û, v̂, a, b, c, d]` when they
