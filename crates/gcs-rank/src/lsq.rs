@@ -602,9 +602,9 @@ mod tests {
         }
     }
 
-    /// A free triangle of distances 3, 4, 5 (three trivial motions): the steps are orthogonal
-    /// to the translations, so the solve keeps the start's centroid, and it converges.
-    struct Triangle;
+    /// A free triangle of the given distances (between points 0–1, 1–2, 0–2; three trivial
+    /// motions).
+    struct Triangle([f64; 3]);
 
     impl Residuals for Triangle {
         fn unknowns(&self) -> usize {
@@ -612,7 +612,7 @@ mod tests {
         }
         fn evaluate(&self, x: &[f64]) -> (Vec<f64>, Vec<SparseRow<f64>>) {
             let mut out: (Vec<f64>, Vec<SparseRow<f64>>) = (Vec::new(), Vec::new());
-            for (a, b, d) in [(0, 1, 3.0), (1, 2, 4.0), (0, 2, 5.0)] {
+            for ((a, b), d) in [(0, 1), (1, 2), (0, 2)].into_iter().zip(self.0) {
                 let (dx, dy) = (x[2 * b] - x[2 * a], x[2 * b + 1] - x[2 * a + 1]);
                 let l = dx.hypot(dy);
                 out.0.push(l - d);
@@ -627,10 +627,12 @@ mod tests {
         }
     }
 
+    /// Distances 3, 4, 5: the steps are orthogonal to the translations, so the solve keeps the
+    /// start's centroid, and it converges.
     #[test]
     fn free_triangle_keeps_its_centroid() {
         let start = [0.2, -0.1, 3.3, 0.2, 2.7, 4.4];
-        let out = levenberg_marquardt(&Triangle, &start, &nielsen()).unwrap();
+        let out = levenberg_marquardt(&Triangle([3.0, 4.0, 5.0]), &start, &nielsen()).unwrap();
         assert!(out.converged && out.max_residual <= 1e-12, "{out:?}");
         for axis in 0..2 {
             let before: f64 = (0..3).map(|p| start[2 * p + axis]).sum();
@@ -646,29 +648,13 @@ mod tests {
     /// stall rule or the damping bound) well before the iteration limit.
     #[test]
     fn no_solution_stops_early() {
-        struct Flat;
-        impl Residuals for Flat {
-            fn unknowns(&self) -> usize {
-                6
-            }
-            fn evaluate(&self, x: &[f64]) -> (Vec<f64>, Vec<SparseRow<f64>>) {
-                let mut out: (Vec<f64>, Vec<SparseRow<f64>>) = (Vec::new(), Vec::new());
-                for (a, b, d) in [(0, 1, 1.0), (1, 2, 1.0), (0, 2, 3.0)] {
-                    let (dx, dy) = (x[2 * b] - x[2 * a], x[2 * b + 1] - x[2 * a + 1]);
-                    let l = dx.hypot(dy);
-                    out.0.push(l - d);
-                    out.1.push(SparseRow::from_entries(vec![
-                        (2 * a, -dx / l),
-                        (2 * a + 1, -dy / l),
-                        (2 * b, dx / l),
-                        (2 * b + 1, dy / l),
-                    ]));
-                }
-                out
-            }
-        }
         let options = LmOptions { max_iterations: 10_000, ..nielsen() };
-        let out = levenberg_marquardt(&Flat, &[0.0, 0.0, 1.0, 0.3, 2.0, 0.1], &options).unwrap();
+        let out = levenberg_marquardt(
+            &Triangle([1.0, 1.0, 3.0]),
+            &[0.0, 0.0, 1.0, 0.3, 2.0, 0.1],
+            &options,
+        )
+        .unwrap();
         assert!(!out.converged);
         assert!(out.iterations < 1000, "{out:?}");
     }
