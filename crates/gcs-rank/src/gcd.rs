@@ -97,7 +97,8 @@ pub(crate) fn gcd_uint(a: &BigUint, b: &BigUint) -> BigUint {
 /// this). While `r0` has more than 64 bits beyond `bound`, Lehmer's batches take many steps at
 /// once: a batch's matrix has entries below 2^62, so its new `r0` is more than `r0 / 2^63` —
 /// still above `bound` — and no batch passes the step where the plain loop stops. The last
-/// steps, near the bound, are taken one at a time.
+/// steps, near the bound, are taken one at a time (and so are all of them once `r1` has no more
+/// bits than `bound`: a bit count decides without building the number).
 pub(crate) fn euclid_to_bound(
     m: &BigUint,
     a: &BigUint,
@@ -107,7 +108,7 @@ pub(crate) fn euclid_to_bound(
     let mut u = m.to_u64_digits();
     let mut v = a.to_u64_digits();
     let bound_bits = bound.bits() as usize;
-    while !v.is_empty() && from_limbs(&v) > *bound && bit_length(&u) > bound_bits + 64 {
+    while !v.is_empty() && bit_length(&v) > bound_bits && bit_length(&u) > bound_bits + 64 {
         let [a, b, c, d] = cosequence(&u, &v);
         if b == 0 {
             let (q, r) = num_integer::Integer::div_rem(&from_limbs(&u), &from_limbs(&v));
