@@ -139,6 +139,9 @@ struct Track {
     ratio: f64,
     early: Option<(f64, f64)>,
     left: f64,
+    /// Whether the path was tracked to the end, `1 − t = 1e-8` (not stopped by an underflowing
+    /// step or as clearly at infinity).
+    reached: bool,
     /// Where the path was when `1 − t` first fell below 1e-2 (`1 − t`, `z`): the Cauchy
     /// endgame's start.
     endgame: Option<(f64, Vec<C>)>,
@@ -324,7 +327,8 @@ impl Homotopy<'_> {
                 }
             }
         }
-        Track { ratio: ratio(&z), early, left: 1.0 - t, z, endgame }
+        let left = 1.0 - t;
+        Track { ratio: ratio(&z), early, left, reached: left <= 1e-8, z, endgame }
     }
 
     fn rk4(&self, z: &[C], t: f64, dt: f64) -> Option<Vec<C>> {
@@ -424,22 +428,29 @@ impl Homotopy<'_> {
 const MAX_WINDING: usize = 8;
 
 /// Newton on the target from `x`: the solution and whether it is nonsingular there — Newton
-/// converges quadratically to a nonsingular solution (a step below 1e-12 of the size within a
-/// dozen steps), only linearly to a singular one, and the pivots of the Jacobian stay apart.
+/// converges quadratically to a nonsingular solution, only linearly to a singular one, and the
+/// pivots of the Jacobian stay apart. Quadratic convergence shows within a dozen steps as a
+/// step below 1e-12 of the size, or, where the rounding of the values (of order `ε·|x|²` over
+/// a pivot: a large or ill-conditioned solution) keeps the steps above that, as a step below
+/// 1e-9 of the size at most a hundredth of the step before (linear convergence to a singular
+/// solution halves its steps, a third for a triple root).
 fn refine(target: &Target<'_>, x: &[C]) -> Option<(Vec<C>, bool)> {
     let n = target.n;
     let mut x = x.to_vec();
     let mut converged = false;
+    let mut last = f64::INFINITY;
     for _ in 0..12 {
         let (f, j) = (target.eval)(&x);
         let (dx, _, _) = lu_solve(j, f, n)?;
         for (a, d) in x.iter_mut().zip(&dx) {
             *a -= d;
         }
-        if norm(&dx) <= 1e-12 * (1.0 + norm(&x)) {
+        let (step, size) = (norm(&dx), 1.0 + norm(&x));
+        if step <= 1e-12 * size || (step <= 1e-9 * size && step <= 1e-2 * last) {
             converged = true;
             break;
         }
+        last = step;
     }
     let (f, j) = (target.eval)(&x);
     let scale = 1.0 + norm(&x);
@@ -473,7 +484,11 @@ fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> End {
         // (Near the end of its path: Newton from the end of a path to infinity may reach
         // any solution.)
         Some((y, true)) if same_within(&x, &y, 1e-4) => End::Solution(y),
-        _ if track.at_infinity() => End::Infinity,
+        // A path stopped short of the end whose `z₀` shrinks is taken to infinity; one tracked
+        // to the end with `z₀` not negligible is at a finite point that Newton did not confirm
+        // from there (a large or ill-conditioned solution, which the path approaches slowly —
+        // as `z₀` shrinks towards its finite value — or a singular one): the endgame decides.
+        _ if !track.reached && track.at_infinity() => End::Infinity,
         _ => match &track.endgame {
             Some((radius, z)) => endgame(homotopy, z, *radius),
             None => End::Failed,
@@ -500,6 +515,21 @@ fn endgame(homotopy: &Homotopy<'_>, z: &[C], radius: f64) -> End {
     }
     let (f, _) = (target.eval)(&x);
     if norm(&f) <= 1e-6 * (1.0 + norm(&x)).powi(2) { End::Singular } else { End::Failed }
+}
+
+/// The paths whose end is a nonsingular solution another path also ended at, in order.
+fn collisions(results: &[End]) -> Vec<usize> {
+    let solution = |k: usize| match &results[k] {
+        End::Solution(x) => Some(x),
+        _ => None,
+    };
+    (0..results.len())
+        .filter(|&k| {
+            solution(k).is_some_and(|x| {
+                (0..results.len()).any(|l| l != k && solution(l).is_some_and(|y| same(x, y)))
+            })
+        })
+        .collect()
 }
 
 /// Whether two solutions are the same (relative to their size).
@@ -711,21 +741,28 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         // (A thread that failed: nothing is claimed.)
         return None;
     }
-    for (z, result) in starts.iter().zip(first) {
-        // A path that ends at a solution another path reached jumped (each nonsingular
-        // solution ends one path): tracked again with smaller steps, else failed.
-        let result = match result {
-            End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
-                match end_of(&homotopy, &homotopy.track(z.clone(), 0.01)) {
-                    End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
-                        end_of(&homotopy, &homotopy.track(z.clone(), 0.001))
-                    }
-                    other => other,
-                }
-            }
-            End::Failed => end_of(&homotopy, &homotopy.track(z.clone(), 0.01)),
-            other => other,
-        };
+    let mut results = first;
+    // A path the tracker lost is tracked again with smaller steps.
+    for (z, result) in starts.iter().zip(results.iter_mut()) {
+        if matches!(result, End::Failed) {
+            *result = end_of(&homotopy, &homotopy.track(z.clone(), 0.01));
+        }
+    }
+    // Paths that end at the same nonsingular solution: with a generic γ the paths are disjoint
+    // and each such solution ends exactly one, so all but one of them jumped to another path
+    // on the way (which one is not known), and as many solutions may be missing. Every path
+    // of such a collision is tracked again with smaller steps (a tenth, then a hundredth),
+    // until no two ends agree; what then still agrees counts as failed paths, all but one.
+    for step in [0.01, 0.001] {
+        let colliding = collisions(&results);
+        if colliding.is_empty() {
+            break;
+        }
+        for k in colliding {
+            results[k] = end_of(&homotopy, &homotopy.track(starts[k].clone(), step));
+        }
+    }
+    for result in results {
         match result {
             End::Solution(x) if !ends.solutions.iter().any(|s| same(s, &x)) => {
                 ends.solutions.push(x);
