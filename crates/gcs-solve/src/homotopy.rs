@@ -142,6 +142,8 @@ struct Track {
     /// Whether the path was tracked to the end, `1 − t = 1e-8` (not stopped by an underflowing
     /// step or as clearly at infinity).
     reached: bool,
+    /// Where the path was when `1 − t` first fell below 1e-7 (`1 − t`, `z`).
+    last_decade: Option<(f64, Vec<C>)>,
     /// Where the path was when `1 − t` first fell below 1e-2 (`1 − t`, `z`): the Cauchy
     /// endgame's start.
     endgame: Option<(f64, Vec<C>)>,
@@ -288,6 +290,7 @@ impl Homotopy<'_> {
         let mut successes = 0;
         let mut early: Option<(f64, f64)> = None;
         let mut endgame: Option<(f64, Vec<C>)> = None;
+        let mut last_decade: Option<(f64, Vec<C>)> = None;
         let ratio = |z: &[C]| z[0].norm() / norm(z);
         for _ in 0..2_000 {
             let left = 1.0 - t;
@@ -307,6 +310,9 @@ impl Homotopy<'_> {
                     if early.is_none() && 1.0 - t <= 1e-2 {
                         early = Some((1.0 - t, ratio(&z)));
                         endgame = Some((1.0 - t, z.clone()));
+                    }
+                    if last_decade.is_none() && 1.0 - t <= 1e-7 {
+                        last_decade = Some((1.0 - t, z.clone()));
                     }
                     // Clearly at infinity: z₀ negligible, or shrunk twenty-fold since
                     // `1 − t` fell below 1e-2 and already below 1e-3 of z.
@@ -328,7 +334,7 @@ impl Homotopy<'_> {
             }
         }
         let left = 1.0 - t;
-        Track { ratio: ratio(&z), early, left, reached: left <= 1e-8, z, endgame }
+        Track { ratio: ratio(&z), early, left, reached: left <= 1e-8, last_decade, z, endgame }
     }
 
     fn rk4(&self, z: &[C], t: f64, dt: f64) -> Option<Vec<C>> {
@@ -484,6 +490,7 @@ fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> End {
         // (Near the end of its path: Newton from the end of a path to infinity may reach
         // any solution.)
         Some((y, true)) if same_within(&x, &y, 1e-4) => End::Solution(y),
+        Some((y, true)) if approaches(target, track, &y) => End::Solution(y),
         // A path stopped short of the end whose `z₀` shrinks is taken to infinity; one tracked
         // to the end with `z₀` not negligible is at a finite point that Newton did not confirm
         // from there (a large or ill-conditioned solution, which the path approaches slowly —
@@ -494,6 +501,27 @@ fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> End {
             None => End::Failed,
         },
     }
+}
+
+/// Whether a path tracked to the end approaches the nonsingular solution `y` that Newton on the
+/// target reached from its end, though not yet within 1e-4 of it (a large or ill-conditioned
+/// solution: near `t = 1` the path is `y + O(1 − t)` with a large constant): within 1e-2 of it
+/// at the end, and its distance to `y` shrinking in proportion to `1 − t` over the last decade
+/// (within a factor two; a path to a singular end, `y + O((1 − t)^{1/c})`, shrinks slower by
+/// the cycle number `c`), where Newton from the start of that decade reaches `y` too.
+fn approaches(target: &Target<'_>, track: &Track, y: &[C]) -> bool {
+    let affine = |z: &[C]| -> Vec<C> { z[1..].iter().map(|v| v / z[0]).collect() };
+    let Some((before, z)) = &track.last_decade else { return false };
+    if !track.reached || track.left <= 0.0 {
+        return false;
+    }
+    let distance = |x: &[C]| x.iter().zip(y).map(|(a, b)| (a - b).norm_sqr()).sum::<f64>().sqrt();
+    let (x, earlier) = (affine(&track.z), affine(z));
+    let (now, then) = (distance(&x), distance(&earlier));
+    now <= 1e-2 * (1.0 + norm(y))
+        && then >= 0.5 * (before / track.left) * now
+        && then <= 2.0 * (before / track.left) * now
+        && refine(target, &earlier).is_some_and(|(w, nonsingular)| nonsingular && same(&w, y))
 }
 
 /// The end of a path the tracker could not decide, by the Cauchy endgame from where it was at
