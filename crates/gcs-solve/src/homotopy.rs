@@ -891,6 +891,45 @@ mod tests {
         assert_eq!((ends.singular, ends.failed), (2, 0), "{ends:?}");
     }
 
+    /// A large, ill-conditioned solution: `x² − y² = k`, `x − y = δ` meet only at `x + y =
+    /// k/δ` (the other path goes to infinity), here `x ≈ y ≈ 250` with a Jacobian of
+    /// determinant `−2δ`. The path approaches it slowly (still 1e-4 of its size away at
+    /// `1 − t = 1e-8`, as `z₀` shrinks towards its finite value) and Newton there stalls at the
+    /// rounding of `x²` above a step of 1e-12 of the size: the path must end at the solution,
+    /// neither at infinity nor undecided.
+    #[test]
+    fn a_large_ill_conditioned_solution_is_found() {
+        for (k, delta) in [(5.0, 0.01), (2.0, 0.004), (20.0, 0.05)] {
+            let eval = move |x: &[C]| {
+                let f = vec![x[0] * x[0] - x[1] * x[1] - c(k), x[0] - x[1] - c(delta)];
+                (f, vec![x[0] * 2.0, -x[1] * 2.0, c(1.0), c(-1.0)])
+            };
+            let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
+            for seed in 1..=4 {
+                let ends = solve(&t, seed, MAX_PATHS).unwrap();
+                assert_eq!(
+                    (ends.solutions.len(), ends.failed),
+                    (1, 0),
+                    "{k} {delta} {seed}: {ends:?}"
+                );
+                let s = &ends.solutions[0];
+                let sum = k / delta;
+                assert!((s[0] - c((sum + delta) / 2.0)).norm() < 1e-9 * sum, "{s:?}");
+            }
+        }
+    }
+
+    /// Every path whose end is a nonsingular solution another path also reached is in a
+    /// collision (all of them, not only the later: which one jumped is not known).
+    #[test]
+    fn collisions_name_every_path_at_a_shared_end() {
+        let at = |v: f64| End::Solution(vec![c(v), c(1.0)]);
+        let results = [at(1.0), End::Infinity, at(2.0), at(1.0 + 1e-12), End::Singular, at(2.5)];
+        assert_eq!(collisions(&results), vec![0, 3]);
+        let results = [at(1.0), at(2.0), End::Failed, End::Failed];
+        assert!(collisions(&results).is_empty());
+    }
+
     /// Too many paths are refused.
     #[test]
     fn too_many_paths_are_not_attempted() {
