@@ -22,13 +22,26 @@
 //!   failure. A path whose step underflows before `t = 1` ends there (near a singular end).
 //! - At `t = 1` (or where a path stopped), an end with `z₀` negligible is at infinity; any
 //!   other end is refined by Newton on `F` itself, and counts as a solution when Newton
-//!   converges there with a well-conditioned Jacobian. A path that is neither goes to the
-//!   Cauchy endgame: from where it was at `1 − t = 10⁻²` it is tracked around the circle
+//!   converges there quadratically (to a step of 1e-12 of the size, or by a hundredfold drop
+//!   to the rounding floor of a large solution) with a well-conditioned Jacobian — from the
+//!   end itself, or, for a path tracked to `1 − t = 1e-8` that is still far from a large or
+//!   ill-conditioned solution, when the path's distance to it shrinks in proportion to
+//!   `1 − t`. A path stopped short of the end whose `z₀` shrinks is at infinity. Any other
+//!   path (including one tracked to the end at a finite point Newton does not confirm) goes
+//!   to the Cauchy endgame: from where it was at `1 − t = 10⁻²` it is tracked around the circle
 //!   `|1 − t| = 10⁻²` until it closes (its cycle number, at most 8 turns), and its end is the
 //!   mean over those turns (Cauchy's integral formula) — at infinity, a nonsingular solution
 //!   Newton confirms, or a singular solution (the path is decided: singular ends are no
 //!   isolated nonsingular solution). Ends the endgame cannot decide (a loop that does not
 //!   close) are counted as failed: the caller reports the solution set as incomplete.
+//! - Completeness: with a generic `γ` the paths are disjoint for `t < 1` and each isolated
+//!   nonsingular solution ends exactly one. Two paths ending at the same nonsingular solution
+//!   therefore mean that one jumped to the other (and a solution may be missing): every path
+//!   of such a collision is tracked again with smaller steps (a tenth, then a hundredth of
+//!   the first), and the paths whose ends still collide count as failed, all but one. The
+//!   solution set is [`Ends::complete`] only when no path failed: every path decided (a
+//!   distinct nonsingular solution, infinity, or a singular end). A path that jumped onto a
+//!   path to infinity or to a singular end leaves no collision and is not detected.
 //!
 //! All of this is floating point: the counts are numerical results, reported as such.
 
@@ -70,8 +83,9 @@ pub struct Ends {
     /// Paths that ended at a finite singular solution (found by the Cauchy endgame): decided,
     /// and no isolated nonsingular solution.
     pub singular: usize,
-    /// Paths that ended neither at a nonsingular solution nor at infinity (a singular
-    /// solution, or a path lost).
+    /// Paths that ended neither at a nonsingular solution nor at infinity nor at a singular
+    /// solution: lost, undecided by the endgame, or ending (after re-tracking) at a solution
+    /// another path ended at (a jump: each nonsingular solution ends one path).
     pub failed: usize,
 }
 
