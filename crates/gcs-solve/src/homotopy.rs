@@ -22,13 +22,26 @@
 //!   failure. A path whose step underflows before `t = 1` ends there (near a singular end).
 //! - At `t = 1` (or where a path stopped), an end with `z₀` negligible is at infinity; any
 //!   other end is refined by Newton on `F` itself, and counts as a solution when Newton
-//!   converges there with a well-conditioned Jacobian. A path that is neither goes to the
-//!   Cauchy endgame: from where it was at `1 − t = 10⁻²` it is tracked around the circle
+//!   converges there quadratically (to a step of 1e-12 of the size, or by a hundredfold drop
+//!   to the rounding floor of a large solution) with a well-conditioned Jacobian — from the
+//!   end itself, or, for a path tracked to `1 − t = 1e-8` that is still far from a large or
+//!   ill-conditioned solution, when the path's distance to it shrinks in proportion to
+//!   `1 − t`. A path stopped short of the end whose `z₀` shrinks is at infinity. Any other
+//!   path (including one tracked to the end at a finite point Newton does not confirm) goes
+//!   to the Cauchy endgame: from where it was at `1 − t = 10⁻²` it is tracked around the circle
 //!   `|1 − t| = 10⁻²` until it closes (its cycle number, at most 8 turns), and its end is the
 //!   mean over those turns (Cauchy's integral formula) — at infinity, a nonsingular solution
 //!   Newton confirms, or a singular solution (the path is decided: singular ends are no
 //!   isolated nonsingular solution). Ends the endgame cannot decide (a loop that does not
 //!   close) are counted as failed: the caller reports the solution set as incomplete.
+//! - Completeness: with a generic `γ` the paths are disjoint for `t < 1` and each isolated
+//!   nonsingular solution ends exactly one. Two paths ending at the same nonsingular solution
+//!   therefore mean that one jumped to the other (and a solution may be missing): every path
+//!   of such a collision is tracked again with smaller steps (a tenth, then a hundredth of
+//!   the first), and the paths whose ends still collide count as failed, all but one. The
+//!   solution set is [`Ends::complete`] only when no path failed: every path decided (a
+//!   distinct nonsingular solution, infinity, or a singular end). A path that jumped onto a
+//!   path to infinity or to a singular end leaves no collision and is not detected.
 //!
 //! All of this is floating point: the counts are numerical results, reported as such.
 
@@ -70,8 +83,9 @@ pub struct Ends {
     /// Paths that ended at a finite singular solution (found by the Cauchy endgame): decided,
     /// and no isolated nonsingular solution.
     pub singular: usize,
-    /// Paths that ended neither at a nonsingular solution nor at infinity (a singular
-    /// solution, or a path lost).
+    /// Paths that ended neither at a nonsingular solution nor at infinity nor at a singular
+    /// solution: lost, undecided by the endgame, or ending (after re-tracking) at a solution
+    /// another path ended at (a jump: each nonsingular solution ends one path).
     pub failed: usize,
 }
 
@@ -139,6 +153,11 @@ struct Track {
     ratio: f64,
     early: Option<(f64, f64)>,
     left: f64,
+    /// Whether the path was tracked to the end, `1 − t = 1e-8` (not stopped by an underflowing
+    /// step or as clearly at infinity).
+    reached: bool,
+    /// Where the path was when `1 − t` first fell below 1e-7 (`1 − t`, `z`).
+    last_decade: Option<(f64, Vec<C>)>,
     /// Where the path was when `1 − t` first fell below 1e-2 (`1 − t`, `z`): the Cauchy
     /// endgame's start.
     endgame: Option<(f64, Vec<C>)>,
@@ -285,6 +304,7 @@ impl Homotopy<'_> {
         let mut successes = 0;
         let mut early: Option<(f64, f64)> = None;
         let mut endgame: Option<(f64, Vec<C>)> = None;
+        let mut last_decade: Option<(f64, Vec<C>)> = None;
         let ratio = |z: &[C]| z[0].norm() / norm(z);
         for _ in 0..2_000 {
             let left = 1.0 - t;
@@ -305,6 +325,9 @@ impl Homotopy<'_> {
                         early = Some((1.0 - t, ratio(&z)));
                         endgame = Some((1.0 - t, z.clone()));
                     }
+                    if last_decade.is_none() && 1.0 - t <= 1e-7 {
+                        last_decade = Some((1.0 - t, z.clone()));
+                    }
                     // Clearly at infinity: z₀ negligible, or shrunk twenty-fold since
                     // `1 − t` fell below 1e-2 and already below 1e-3 of z.
                     let r = ratio(&z);
@@ -324,7 +347,8 @@ impl Homotopy<'_> {
                 }
             }
         }
-        Track { ratio: ratio(&z), early, left: 1.0 - t, z, endgame }
+        let left = 1.0 - t;
+        Track { ratio: ratio(&z), early, left, reached: left <= 1e-8, last_decade, z, endgame }
     }
 
     fn rk4(&self, z: &[C], t: f64, dt: f64) -> Option<Vec<C>> {
@@ -424,22 +448,29 @@ impl Homotopy<'_> {
 const MAX_WINDING: usize = 8;
 
 /// Newton on the target from `x`: the solution and whether it is nonsingular there — Newton
-/// converges quadratically to a nonsingular solution (a step below 1e-12 of the size within a
-/// dozen steps), only linearly to a singular one, and the pivots of the Jacobian stay apart.
+/// converges quadratically to a nonsingular solution, only linearly to a singular one, and the
+/// pivots of the Jacobian stay apart. Quadratic convergence shows within a dozen steps as a
+/// step below 1e-12 of the size, or, where the rounding of the values (of order `ε·|x|²` over
+/// a pivot: a large or ill-conditioned solution) keeps the steps above that, as a step below
+/// 1e-9 of the size at most a hundredth of the step before (linear convergence to a singular
+/// solution halves its steps, a third for a triple root).
 fn refine(target: &Target<'_>, x: &[C]) -> Option<(Vec<C>, bool)> {
     let n = target.n;
     let mut x = x.to_vec();
     let mut converged = false;
+    let mut last = f64::INFINITY;
     for _ in 0..12 {
         let (f, j) = (target.eval)(&x);
         let (dx, _, _) = lu_solve(j, f, n)?;
         for (a, d) in x.iter_mut().zip(&dx) {
             *a -= d;
         }
-        if norm(&dx) <= 1e-12 * (1.0 + norm(&x)) {
+        let (step, size) = (norm(&dx), 1.0 + norm(&x));
+        if step <= 1e-12 * size || (step <= 1e-9 * size && step <= 1e-2 * last) {
             converged = true;
             break;
         }
+        last = step;
     }
     let (f, j) = (target.eval)(&x);
     let scale = 1.0 + norm(&x);
@@ -473,12 +504,38 @@ fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> End {
         // (Near the end of its path: Newton from the end of a path to infinity may reach
         // any solution.)
         Some((y, true)) if same_within(&x, &y, 1e-4) => End::Solution(y),
-        _ if track.at_infinity() => End::Infinity,
+        Some((y, true)) if approaches(target, track, &y) => End::Solution(y),
+        // A path stopped short of the end whose `z₀` shrinks is taken to infinity; one tracked
+        // to the end with `z₀` not negligible is at a finite point that Newton did not confirm
+        // from there (a large or ill-conditioned solution, which the path approaches slowly —
+        // as `z₀` shrinks towards its finite value — or a singular one): the endgame decides.
+        _ if !track.reached && track.at_infinity() => End::Infinity,
         _ => match &track.endgame {
             Some((radius, z)) => endgame(homotopy, z, *radius),
             None => End::Failed,
         },
     }
+}
+
+/// Whether a path tracked to the end approaches the nonsingular solution `y` that Newton on the
+/// target reached from its end, though not yet within 1e-4 of it (a large or ill-conditioned
+/// solution: near `t = 1` the path is `y + O(1 − t)` with a large constant): within 1e-2 of it
+/// at the end, and its distance to `y` shrinking in proportion to `1 − t` over the last decade
+/// (within a factor two; a path to a singular end, `y + O((1 − t)^{1/c})`, shrinks slower by
+/// the cycle number `c`), where Newton from the start of that decade reaches `y` too.
+fn approaches(target: &Target<'_>, track: &Track, y: &[C]) -> bool {
+    let affine = |z: &[C]| -> Vec<C> { z[1..].iter().map(|v| v / z[0]).collect() };
+    let Some((before, z)) = &track.last_decade else { return false };
+    if !track.reached || track.left <= 0.0 {
+        return false;
+    }
+    let distance = |x: &[C]| x.iter().zip(y).map(|(a, b)| (a - b).norm_sqr()).sum::<f64>().sqrt();
+    let (x, earlier) = (affine(&track.z), affine(z));
+    let (now, then) = (distance(&x), distance(&earlier));
+    now <= 1e-2 * (1.0 + norm(y))
+        && then >= 0.5 * (before / track.left) * now
+        && then <= 2.0 * (before / track.left) * now
+        && refine(target, &earlier).is_some_and(|(w, nonsingular)| nonsingular && same(&w, y))
 }
 
 /// The end of a path the tracker could not decide, by the Cauchy endgame from where it was at
@@ -500,6 +557,21 @@ fn endgame(homotopy: &Homotopy<'_>, z: &[C], radius: f64) -> End {
     }
     let (f, _) = (target.eval)(&x);
     if norm(&f) <= 1e-6 * (1.0 + norm(&x)).powi(2) { End::Singular } else { End::Failed }
+}
+
+/// The paths whose end is a nonsingular solution another path also ended at, in order.
+fn collisions(results: &[End]) -> Vec<usize> {
+    let solution = |k: usize| match &results[k] {
+        End::Solution(x) => Some(x),
+        _ => None,
+    };
+    (0..results.len())
+        .filter(|&k| {
+            solution(k).is_some_and(|x| {
+                (0..results.len()).any(|l| l != k && solution(l).is_some_and(|y| same(x, y)))
+            })
+        })
+        .collect()
 }
 
 /// Whether two solutions are the same (relative to their size).
@@ -711,21 +783,28 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         // (A thread that failed: nothing is claimed.)
         return None;
     }
-    for (z, result) in starts.iter().zip(first) {
-        // A path that ends at a solution another path reached jumped (each nonsingular
-        // solution ends one path): tracked again with smaller steps, else failed.
-        let result = match result {
-            End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
-                match end_of(&homotopy, &homotopy.track(z.clone(), 0.01)) {
-                    End::Solution(x) if ends.solutions.iter().any(|s| same(s, &x)) => {
-                        end_of(&homotopy, &homotopy.track(z.clone(), 0.001))
-                    }
-                    other => other,
-                }
-            }
-            End::Failed => end_of(&homotopy, &homotopy.track(z.clone(), 0.01)),
-            other => other,
-        };
+    let mut results = first;
+    // A path the tracker lost is tracked again with smaller steps.
+    for (z, result) in starts.iter().zip(results.iter_mut()) {
+        if matches!(result, End::Failed) {
+            *result = end_of(&homotopy, &homotopy.track(z.clone(), 0.01));
+        }
+    }
+    // Paths that end at the same nonsingular solution: with a generic γ the paths are disjoint
+    // and each such solution ends exactly one, so all but one of them jumped to another path
+    // on the way (which one is not known), and as many solutions may be missing. Every path
+    // of such a collision is tracked again with smaller steps (a tenth, then a hundredth),
+    // until no two ends agree; what then still agrees counts as failed paths, all but one.
+    for step in [0.01, 0.001] {
+        let colliding = collisions(&results);
+        if colliding.is_empty() {
+            break;
+        }
+        for k in colliding {
+            results[k] = end_of(&homotopy, &homotopy.track(starts[k].clone(), step));
+        }
+    }
+    for result in results {
         match result {
             End::Solution(x) if !ends.solutions.iter().any(|s| same(s, &x)) => {
                 ends.solutions.push(x);
@@ -824,6 +903,45 @@ mod tests {
         let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
         let ends = solve(&t, 6, MAX_PATHS).unwrap();
         assert_eq!((ends.singular, ends.failed), (2, 0), "{ends:?}");
+    }
+
+    /// A large, ill-conditioned solution: `x² − y² = k`, `x − y = δ` meet only at `x + y =
+    /// k/δ` (the other path goes to infinity), here `x ≈ y ≈ 250` with a Jacobian of
+    /// determinant `−2δ`. The path approaches it slowly (still 1e-4 of its size away at
+    /// `1 − t = 1e-8`, as `z₀` shrinks towards its finite value) and Newton there stalls at the
+    /// rounding of `x²` above a step of 1e-12 of the size: the path must end at the solution,
+    /// neither at infinity nor undecided.
+    #[test]
+    fn a_large_ill_conditioned_solution_is_found() {
+        for (k, delta) in [(5.0, 0.01), (2.0, 0.004), (20.0, 0.05)] {
+            let eval = move |x: &[C]| {
+                let f = vec![x[0] * x[0] - x[1] * x[1] - c(k), x[0] - x[1] - c(delta)];
+                (f, vec![x[0] * 2.0, -x[1] * 2.0, c(1.0), c(-1.0)])
+            };
+            let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
+            for seed in 1..=4 {
+                let ends = solve(&t, seed, MAX_PATHS).unwrap();
+                assert_eq!(
+                    (ends.solutions.len(), ends.failed),
+                    (1, 0),
+                    "{k} {delta} {seed}: {ends:?}"
+                );
+                let s = &ends.solutions[0];
+                let sum = k / delta;
+                assert!((s[0] - c((sum + delta) / 2.0)).norm() < 1e-9 * sum, "{s:?}");
+            }
+        }
+    }
+
+    /// Every path whose end is a nonsingular solution another path also reached is in a
+    /// collision (all of them, not only the later: which one jumped is not known).
+    #[test]
+    fn collisions_name_every_path_at_a_shared_end() {
+        let at = |v: f64| End::Solution(vec![c(v), c(1.0)]);
+        let results = [at(1.0), End::Infinity, at(2.0), at(1.0 + 1e-12), End::Singular, at(2.5)];
+        assert_eq!(collisions(&results), vec![0, 3]);
+        let results = [at(1.0), at(2.0), End::Failed, End::Failed];
+        assert!(collisions(&results).is_empty());
     }
 
     /// Too many paths are refused.

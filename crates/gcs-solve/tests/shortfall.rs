@@ -63,6 +63,22 @@ fn octahedron() -> System {
     space_framework(&points, &edges)
 }
 
+/// The octahedron at random integer coordinates in [−100, 100]³ from `seed`, as the
+/// `enumerate` example draws it.
+fn random_octahedron(seed: u64) -> System {
+    use gcs_model::{Dim, generate, rng::SplitMix64};
+    let coords = generate::random_coords(6, Dim::Three, 100, &mut SplitMix64::new(seed));
+    let mut edges = Vec::new();
+    for a in 0..6 {
+        for b in a + 1..6 {
+            if ![(0, 5), (1, 3), (2, 4)].contains(&(a, b)) {
+                edges.push((a, b));
+            }
+        }
+    }
+    generate::framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &edges)
+}
+
 /// `not-sought`: without `--all` (or with `--max-paths 0`) a node is solved from the drawing
 /// only — one candidate, no paths.
 #[test]
@@ -159,20 +175,22 @@ fn homotopy_budget() {
     assert_eq!(gcs_solve::Bound::SearchHomotopies.limit(), 64);
 }
 
-/// `paths-failed`: a K3,3 drawn at small integer coordinates (`k33_chain(1, 14)`) whose
-/// homotopy leaves 2 of its 70 paths undecided: 14 finite complex solutions found of
-/// Capco et al.'s 16, the two missing ones accounted for by the two undecided paths.
+/// `paths-failed`: the octahedron drawn at random integer coordinates in [−100, 100]³ (the
+/// `enumerate` example's `octahedron 100`, seed 3) whose homotopy leaves 1 of its 512 paths
+/// undecided — all 16 complex solutions found (Bartzos et al.'s count), but the undecided path
+/// could have ended at another, so the node is not complete. (A K3,3 at small integer
+/// coordinates, `k33_chain(1, 14)`, was the case here until its two far solutions were found.)
 #[test]
 fn paths_failed() {
-    let s = gcs_model::generate::k33_chain(1, 14);
+    let s = random_octahedron(3);
     let sol = solve_with(&s, &all(100));
     assert_eq!(sol.status, Status::Solved);
     let [node] = &nodes(&sol)[..] else { panic!("{:?}", sol.plan) };
     let counts = node.paths.expect("enumerated");
-    assert_eq!((counts.paths, counts.finite, counts.failed), (70, 14, 2), "{counts:?}");
-    assert_eq!(node.shortfall, vec![Shortfall::Failed { failed: 2, tracked: 70 }]);
+    assert_eq!((counts.paths, counts.finite, counts.failed), (512, 16, 1), "{counts:?}");
+    assert_eq!(node.shortfall, vec![Shortfall::Failed { failed: 1, tracked: 512 }]);
     assert!(!node.complete && node.candidates == counts.real, "{node:?}");
-    // Each real candidate still holds: what was found is right, only not all.
+    // Each real candidate still holds: what was found is right, only not known to be all.
     for x in sol.solutions.as_ref().unwrap() {
         assert!(gcs_solve::max_relative_residual(&s, x, sol.scale) <= 1e-9);
     }
@@ -203,4 +221,21 @@ fn drawing_missed() {
     assert!(node.shortfall.contains(&Shortfall::DrawingMissed), "{node:?}");
     assert!(!node.complete && node.candidates == 1, "{node:?}");
     assert_eq!(sol.solutions.as_ref().map(Vec::len), Some(1));
+}
+
+/// No solution missed silently: the octahedron drawn at random integer coordinates in
+/// [−100, 100]³ (the `enumerate` example's `octahedron 100`, seed 1) has two of its 16
+/// complex realizations far out (about 2.5 times the drawing's size) and ill-conditioned;
+/// their paths approach them slowly, and were once taken to infinity — 14 solutions, every
+/// path decided, the node complete. Either all 16 are found, or the node says it is not
+/// complete (here all are found).
+#[test]
+fn far_solutions_are_not_taken_to_infinity() {
+    let s = random_octahedron(1);
+    let sol = solve_with(&s, &all(100));
+    let [node] = &nodes(&sol)[..] else { panic!("{:?}", sol.plan) };
+    let counts = node.paths.expect("enumerated");
+    assert!(counts.finite == 16 || !node.complete, "{counts:?} {node:?}");
+    assert_eq!((counts.paths, counts.finite, counts.failed), (512, 16, 0), "{counts:?}");
+    assert!(node.complete && node.shortfall.is_empty(), "{node:?}");
 }
