@@ -1045,12 +1045,10 @@ impl Lowering {
             (Kind::EqualGaps, _) => {
                 unsupported("equal gaps other than of circles, points and lines")
             }
-            // (A length equal to a point–line distance: the distance between the segment's
-            // end points equals the point's to the line.)
-            (Kind::EqualLengthPointLineDistance, [S, P, S]) => {
-                let (start, end) = self.ends(&t[0]);
-                self.push(K::EqualDistance, &c.id, &[&start, &end, &t[1], &t[2]], None)
-            }
+            // (The model's EqualDistance states a length equal to a point–line distance too;
+            // lowered, it leaves loops beside other equal lengths that the placement does not
+            // close yet — SolveSpace's `mapping2d` test file is then refused a witness —, so it
+            // stays skipped.)
             (Kind::EqualLengthPointLineDistance, _) => {
                 unsupported("a length equal to a point–line distance")
             }
