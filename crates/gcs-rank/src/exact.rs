@@ -818,7 +818,7 @@ mod tests {
             state ^= state << 17;
             state
         };
-        let mut big = |bits: u64, next: &mut dyn FnMut() -> u64| {
+        let big = |bits: u64, next: &mut dyn FnMut() -> u64| {
             let words = bits.div_ceil(64) as usize;
             let digits: Vec<u32> = (0..2 * words).map(|_| next() as u32).collect();
             BigInt::from(num_bigint::BigUint::new(digits) >> (64 * words as u64 - bits))
