@@ -227,6 +227,15 @@ pub fn framework_at(
     b.build()
 }
 
+/// The edges of the octahedron on vertices `0…5`: every pair but the opposite ones (0–5, 1–3,
+/// 2–4), in lexicographic order (12 edges).
+pub fn octahedron_edges() -> Vec<(usize, usize)> {
+    (0..6)
+        .flat_map(|a| (a + 1..6).map(move |b| (a, b)))
+        .filter(|e| ![(0, 5), (1, 3), (2, 4)].contains(e))
+        .collect()
+}
+
 /// Random integer coordinates in `[-range, range]^d`, pairwise distinct.
 pub fn random_coords(n: usize, dim: Dim, range: i64, rng: &mut SplitMix64) -> Vec<Vec<i64>> {
     let mut out: Vec<Vec<i64>> = Vec::with_capacity(n);

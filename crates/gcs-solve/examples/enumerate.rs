@@ -26,14 +26,7 @@ use gcs_solve::{Method, SolveOptions, solve};
 fn octahedron(range: i64, seed: u64) -> gcs_model::System {
     use gcs_model::{Dim, generate, rng::SplitMix64};
     let coords = generate::random_coords(6, Dim::Three, range, &mut SplitMix64::new(seed));
-    let mut edges = Vec::new();
-    for a in 0..6 {
-        for b in a + 1..6 {
-            if ![(0, 5), (1, 3), (2, 4)].contains(&(a, b)) {
-                edges.push((a, b));
-            }
-        }
-    }
+    let edges = generate::octahedron_edges();
     generate::framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &edges)
 }
 

@@ -52,14 +52,7 @@ fn octahedron() -> System {
         [0.3, -2.7, -0.3],
         [-0.4, 0.2, -2.8],
     ];
-    let mut edges = Vec::new();
-    for a in 0..6 {
-        for b in a + 1..6 {
-            if ![(0, 5), (1, 3), (2, 4)].contains(&(a, b)) {
-                edges.push((a, b));
-            }
-        }
-    }
+    let edges = gcs_model::generate::octahedron_edges();
     space_framework(&points, &edges)
 }
 
@@ -68,14 +61,7 @@ fn octahedron() -> System {
 fn random_octahedron(seed: u64) -> System {
     use gcs_model::{Dim, generate, rng::SplitMix64};
     let coords = generate::random_coords(6, Dim::Three, 100, &mut SplitMix64::new(seed));
-    let mut edges = Vec::new();
-    for a in 0..6 {
-        for b in a + 1..6 {
-            if ![(0, 5), (1, 3), (2, 4)].contains(&(a, b)) {
-                edges.push((a, b));
-            }
-        }
-    }
+    let edges = generate::octahedron_edges();
     generate::framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &edges)
 }
 
