@@ -784,10 +784,13 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         return None;
     }
     let mut results = first;
+    // The largest step each path was last tracked with.
+    let mut steps = vec![0.1; starts.len()];
     // A path the tracker lost is tracked again with smaller steps.
-    for (z, result) in starts.iter().zip(results.iter_mut()) {
+    for ((z, result), used) in starts.iter().zip(results.iter_mut()).zip(steps.iter_mut()) {
         if matches!(result, End::Failed) {
             *result = end_of(&homotopy, &homotopy.track(z.clone(), 0.01));
+            *used = 0.01;
         }
     }
     // Paths that end at the same nonsingular solution: with a generic γ the paths are disjoint
@@ -800,8 +803,13 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         if colliding.is_empty() {
             break;
         }
+        // (A path tracked with this step already would end where it did.)
         for k in colliding {
+            if steps[k] <= step {
+                continue;
+            }
             results[k] = end_of(&homotopy, &homotopy.track(starts[k].clone(), step));
+            steps[k] = step;
         }
     }
     for result in results {
