@@ -236,6 +236,13 @@ pub fn octahedron_edges() -> Vec<(usize, usize)> {
         .collect()
 }
 
+/// The octahedron ([`octahedron_edges`]) in space at random integer coordinates in
+/// `[-range, range]³` from `seed`, each distance at its drawn length.
+pub fn random_octahedron(range: i64, seed: u64) -> System {
+    let coords = random_coords(6, Dim::Three, range, &mut SplitMix64::new(seed));
+    framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &octahedron_edges())
+}
+
 /// Random integer coordinates in `[-range, range]^d`, pairwise distinct.
 pub fn random_coords(n: usize, dim: Dim, range: i64, rng: &mut SplitMix64) -> Vec<Vec<i64>> {
     let mut out: Vec<Vec<i64>> = Vec::with_capacity(n);

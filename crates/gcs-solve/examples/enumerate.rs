@@ -21,15 +21,6 @@ use std::time::Instant;
 use gcs_analysis::{AnalysisOptions, analyze};
 use gcs_solve::{Method, SolveOptions, solve};
 
-/// An octahedron (opposite vertices 0–5, 1–3, 2–4 not joined) at random integer coordinates
-/// in [−range, range]³, each distance at its drawn length.
-fn octahedron(range: i64, seed: u64) -> gcs_model::System {
-    use gcs_model::{Dim, generate, rng::SplitMix64};
-    let coords = generate::random_coords(6, Dim::Three, range, &mut SplitMix64::new(seed));
-    let edges = generate::octahedron_edges();
-    generate::framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &edges)
-}
-
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut seeds = 3u64;
@@ -65,7 +56,7 @@ fn main() {
             let system = match family.as_str() {
                 "k33" => gcs_model::generate::k33_chain(n, seed),
                 "sphere" => gcs_model::generate::triangulated_sphere(n, seed),
-                "octahedron" => octahedron(n as i64, seed),
+                "octahedron" => gcs_model::generate::random_octahedron(n as i64, seed),
                 _ => gcs_model::generate::laman_drawn(n, seed, 0.0).0,
             };
             let analysis = analyze(&system, &options).expect("analysis");

@@ -56,15 +56,6 @@ fn octahedron() -> System {
     space_framework(&points, &edges)
 }
 
-/// The octahedron at random integer coordinates in [−100, 100]³ from `seed`, as the
-/// `enumerate` example draws it.
-fn random_octahedron(seed: u64) -> System {
-    use gcs_model::{Dim, generate, rng::SplitMix64};
-    let coords = generate::random_coords(6, Dim::Three, 100, &mut SplitMix64::new(seed));
-    let edges = generate::octahedron_edges();
-    generate::framework(&format!("octahedron-{seed}"), Dim::Three, &coords, &edges)
-}
-
 /// `not-sought`: without `--all` (or with `--max-paths 0`) a node is solved from the drawing
 /// only — one candidate, no paths.
 #[test]
@@ -168,7 +159,7 @@ fn homotopy_budget() {
 /// coordinates, `k33_chain(1, 14)`, was the case here until its two far solutions were found.)
 #[test]
 fn paths_failed() {
-    let s = random_octahedron(3);
+    let s = gcs_model::generate::random_octahedron(100, 3);
     let sol = solve_with(&s, &all(100));
     assert_eq!(sol.status, Status::Solved);
     let [node] = &nodes(&sol)[..] else { panic!("{:?}", sol.plan) };
@@ -217,7 +208,7 @@ fn drawing_missed() {
 /// complete (here all are found).
 #[test]
 fn far_solutions_are_not_taken_to_infinity() {
-    let s = random_octahedron(1);
+    let s = gcs_model::generate::random_octahedron(100, 1);
     let sol = solve_with(&s, &all(100));
     let [node] = &nodes(&sol)[..] else { panic!("{:?}", sol.plan) };
     let counts = node.paths.expect("enumerated");
