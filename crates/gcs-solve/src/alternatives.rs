@@ -195,7 +195,7 @@ pub(crate) fn realizations(
     // Points only, each an (x, y) pair: isotropic coordinates apply.
     let paired = entities.iter().filter(|&&e| !layout.columns(e).is_empty()).all(|&e| {
         layout.columns(e).len() == 2 && system.entity(e).kind() == gcs_model::EntityKind::Point
-    }) && n % 2 == 0;
+    }) && n.is_multiple_of(2);
     let equations_of: Vec<ConstraintIdx> =
         core.iter().copied().filter(|c| !gauge.contains(c)).collect();
     let param = Param {
@@ -570,6 +570,12 @@ enum Row {
     Extra(usize),
 }
 
+/// A real solution of a node: its unknowns, and the whole configuration they give.
+type RealEnd = (Vec<f64>, Vec<f64>);
+
+/// A square complex system: its values and its Jacobian (row-major) at a point.
+type Residuals<'a> = dyn Fn(&[C]) -> (Vec<C>, Vec<C>) + 'a;
+
 /// Every real solution of `constraints` (and of the parametrisation's own equations) over
 /// `param`, as its unknowns and as a whole configuration (`x` outside the parametrised
 /// columns), nearest to `x` first.
@@ -592,7 +598,7 @@ fn solve_param(
     x: &[f64],
     (max_paths, tolerance): (usize, f64),
     seed: u64,
-) -> Result<(PathCounts, Vec<(Vec<f64>, Vec<f64>)>), Shortfall> {
+) -> Result<(PathCounts, Vec<RealEnd>), Shortfall> {
     let n = param.n;
     let size = param.size;
     if n == 0 {
@@ -754,7 +760,7 @@ fn solve_param(
         }
         y
     };
-    let mut found: Vec<(f64, (Vec<f64>, Vec<f64>))> = Vec::new();
+    let mut found: Vec<(f64, RealEnd)> = Vec::new();
     for s in &ends.solutions {
         let s = if isotropic { to_xy(s) } else { s.clone() };
         let magnitude = 1.0 + s.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
@@ -894,7 +900,7 @@ fn polish(rows: &RealRows<'_>, start: &[f64]) -> Vec<f64> {
 /// Fourier transform; a coefficient below 1e-9 of the largest is zero, so that rounding can only
 /// raise a degree). `None` when a degree may exceed 6.
 fn bidegrees(
-    eval: &dyn Fn(&[C]) -> (Vec<C>, Vec<C>),
+    eval: &Residuals<'_>,
     n: usize,
     second: &[bool],
     rng: &mut gcs_model::rng::SplitMix64,

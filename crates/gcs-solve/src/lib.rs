@@ -51,6 +51,10 @@
 //!
 //! A library: it never panics on input and never prints.
 
+// Tolerance tests are written `!(x <= tolerance)` on purpose: a NaN residual fails them, where
+// `x > tolerance` would let it pass.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod alternatives;
 pub mod closed;
 pub mod homotopy;
@@ -522,7 +526,7 @@ impl<'s> Problem<'s> {
     /// untouched otherwise (the homotopy then starts from `x`).
     fn direct(&self, x: &mut [f64], options: &SolveOptions) -> Option<usize> {
         let y = self.gather(x);
-        let Some(outcome) = levenberg_marquardt(
+        let outcome = levenberg_marquardt(
             self,
             &y,
             &LmOptions {
@@ -534,9 +538,7 @@ impl<'s> Problem<'s> {
                 acceleration: y.len() > ACCELERATE_ABOVE,
                 ..LmOptions::default()
             },
-        ) else {
-            return None;
-        };
+        )?;
         if !outcome.converged {
             return None;
         }
@@ -1586,9 +1588,7 @@ pub fn solve_cached(
                 found.search(
                     &construction.steps,
                     &mut y,
-                    &layout,
-                    system,
-                    &equations,
+                    (system, &layout, &equations),
                     &forced,
                     &holds,
                 );
@@ -1673,9 +1673,7 @@ impl Realizations {
         &mut self,
         steps: &[plan::Step],
         y: &mut [f64],
-        layout: &Layout,
-        system: &System,
-        equations: &Equations<'_>,
+        (system, layout, equations): (&System, &Layout, &Equations<'_>),
         forced: &[Option<usize>],
         holds: &dyn Fn(usize, &[f64]) -> bool,
     ) {
