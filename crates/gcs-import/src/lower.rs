@@ -394,12 +394,23 @@ impl Lowering {
     }
 
     /// Where the sketch joins curves `a` and `b`: an end point of one that the sketch makes
-    /// coincide with an end point of the other, or puts on the other.
+    /// coincide with an end point of the other, or puts on the other. An unbounded line's "end
+    /// points" are the points the sketch puts on it (a zero-length line's ends are such points).
     fn joint(&self, a: &Target, b: &Target) -> Option<Target> {
         let ends = |t: &Target| -> Vec<String> {
             match t.shape {
                 Some(Shape::Segment | Shape::Arc | Shape::Spline { clamped: true, .. }) => {
                     vec![format!("{}.start", t.id), format!("{}.end", t.id)]
+                }
+                Some(Shape::Line) => {
+                    let mut on: Vec<String> = self
+                        .on_curve
+                        .iter()
+                        .filter(|(_, curve)| *curve == t.id)
+                        .map(|(p, _)| p.clone())
+                        .collect();
+                    on.sort_unstable();
+                    on
                 }
                 _ => Vec::new(),
             }

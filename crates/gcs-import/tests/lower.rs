@@ -294,6 +294,45 @@ fn a_tangency_of_joined_curves_is_at_the_joint() {
     assert_eq!(at[1], gcs_model::number::int(10), "the float noise is snapped off");
 }
 
+/// A tangency between an unbounded line and an arc that the sketch joins at a point put on the
+/// line (how an Onshape zero-length line, its carrier and its ends, meets a fillet) is
+/// `TangentAt` that point: written as incidence + `Tangent` it would be singular at every
+/// solution, one false redundancy and one false degree of freedom.
+#[test]
+fn tangency_of_a_line_at_a_point_on_it_is_transversal() {
+    let s = sketch(
+        vec![
+            entity("l", Geometry::Line { a: vec![n(0), n(0)], b: vec![n(10), n(0)] }),
+            entity("p", Geometry::Point { at: vec![n(10), n(0)] }),
+            entity(
+                "a",
+                Geometry::Arc {
+                    center: vec![n(10), n(5)],
+                    start: vec![n(10), n(0)],
+                    end: vec![n(15), n(5)],
+                },
+            ),
+        ],
+        vec![
+            constraint("on", Kind::PointOnObject, vec![Ref::whole("p"), Ref::whole("l")], None),
+            constraint(
+                "j",
+                Kind::Coincident,
+                vec![Ref::whole("p"), Ref::part("a", Part::Start)],
+                None,
+            ),
+            constraint("t", Kind::Tangent, vec![Ref::whole("l"), Ref::whole("a")], None),
+        ],
+    );
+    let l = lower(&s);
+    assert!(l.complete(), "{:?}", l.skipped);
+    assert_eq!(lowered(&l, "t"), (ConstraintKind::TangentAt, strings(&["l", "a", "p"]), None));
+    let a = gcs_analysis::analyze(&l.system, &Default::default()).unwrap();
+    assert!(a.redundant.is_empty(), "{:?}", a.redundant);
+    // Line 2, point 2, arc 5 (centre, radius, two angles) less 1 + 2 + 1.
+    assert_eq!(a.dof_absolute, 2 + 2 + 5 - 4);
+}
+
 /// A distance to a circle's boundary (from a point, a line or another circle) becomes a circle
 /// concentric with it through the point (tangent to the line or circle), at that distance from
 /// it; between circles drawn concentric, the model's own distance of two circles. Each removes

@@ -104,15 +104,16 @@ fn every_sample_file_reads_with_the_expected_totals() {
     // 2,481 entities in the files, of which 4 are skipped (trimmed interpolated splines), 6
     // interpolated splines read as the spline and its 24 inner interpolation points, and 5
     // boxes (4 text boxes, 1 image box) read as 5 entities each (4 edges, a centre):
-    // 2,481 − 4 + 24 + 20 = 2,521. The 15 zero-length lines are among them, as points.
-    assert_eq!(count(|s| s.entities.len()), 2521);
+    // 2,481 − 4 + 24 + 20 = 2,521, and the 15 zero-length lines read as their carriers and
+    // their 30 ends: 2,551.
+    assert_eq!(count(|s| s.entities.len()), 2551);
     assert_eq!(
         count(|s| s
             .entities
             .iter()
             .filter(|e| matches!(e.geometry, Geometry::Point { .. }))
             .count()),
-        247 + 15 + 5 + 24
+        247 + 30 + 5 + 24
     );
     // 5,531 constraints in the files: 540 skipped, 43 mirrors of segments said by the mirrors
     // of their end points (notes), 9 patterns read as 301 moves of points
@@ -125,7 +126,9 @@ fn every_sample_file_reads_with_the_expected_totals() {
     // interpolated splines read hold their 24 inner points (`<id>#through<k>`):
     // 4,913 + 15 + 301 + 9 + 55 + 37 + 45 + 24 = 5,399.
     assert_eq!(source_constraints, 5531);
-    assert_eq!(count(|s| s.constraints.len()), 5399);
+    // And the 52 constraints on the 15 zero-length lines, and their 30 ends on their carriers:
+    // 5,399 + 52 + 30 = 5,481.
+    assert_eq!(count(|s| s.constraints.len()), 5481);
     let relations = count(|s| {
         s.constraints
             .iter()
@@ -139,10 +142,10 @@ fn every_sample_file_reads_with_the_expected_totals() {
         s.constraints.iter().filter(|c| matches!(c.kind, Kind::Rotated | Kind::Translated)).count()
     });
     assert_eq!(moves, 301);
-    // Skipped: 4 trimmed interpolated splines and 516 constraints; notes: the 43 mirrors and
+    // Skipped: 4 trimmed interpolated splines and 464 constraints; notes: the 43 mirrors and
     // 10 coincidences of an interpolated spline's end with its end interpolation point (one
     // point here).
-    assert_eq!(count(|s| s.skipped.len()), 4 + 516);
+    assert_eq!(count(|s| s.skipped.len()), 4 + 464);
     assert_eq!(count(|s| s.notes.len()), 43 + 10);
     let notes = |prefix: &str| {
         sketches.iter().flat_map(|s| &s.notes).filter(|n| n.reason.starts_with(prefix)).count()
@@ -150,7 +153,7 @@ fn every_sample_file_reads_with_the_expected_totals() {
     assert_eq!(notes("MIRROR of two segments"), 43);
     assert_eq!(notes("COINCIDENT of two names of one point"), 10);
     assert_eq!(
-        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 516 + 53 + 9 + 3,
+        count(|s| s.constraints.iter().filter(|c| !c.id.contains('#')).count()) + 464 + 53 + 9 + 3,
         5531
     );
     // Sketches with nothing skipped: most others reference the sketch origin or model edges,
@@ -165,7 +168,6 @@ fn every_sample_file_reads_with_the_expected_totals() {
     let expected = BTreeMap::from([
         ("external geometry", 426),
         ("reference to a skipped entity", 18),
-        ("zero-length line used as a line", 52),
         ("offset", 3),
         ("circular pattern", 2),
         ("interpolated spline", 4),
@@ -411,21 +413,26 @@ fn sample_facts_checked_in_the_json() {
     assert_eq!(center, &at("-97.51246727790153", "4"));
     assert!(close(start, [-93.51246727790152, 4.0]) && close(end, [-101.51246727790153, 4.0]));
 
-    // A zero-length line (parameters 0.0019398416822009887 and 0.001939841682200987) is a
-    // point; its end points are that point, and a constraint on its direction is skipped.
+    // A zero-length line (parameters 0.0019398416822009887 and 0.001939841682200987) is its
+    // carrier, with its two ends on it: the constraints on its direction are the carrier's, those
+    // on its ends the end points'.
     let (_, s) = read_corpus_file(&files, "00271719_e4b75658a7c39a68a2bc7045_featurescript_003");
     let zero = "f79a1f50-f10d-458a-bd2b-381a696e89d2";
-    assert!(matches!(entity(&s[0], zero).geometry, Geometry::Point { .. }));
-    let uses: Vec<&Constraint> =
-        s[0].constraints.iter().filter(|c| c.refs.contains(&whole(zero))).collect();
-    assert_eq!(uses.len(), 2);
-    assert!(uses.iter().all(|c| c.kind == Kind::Coincident));
-    let zero_reasons = s[0]
-        .skipped
-        .iter()
-        .filter(|k| k.reason.contains(&format!("`{zero}` has zero length")))
-        .count();
-    assert_eq!(zero_reasons, 2, "VERTICAL and PERPENDICULAR on it");
+    assert!(matches!(entity(&s[0], zero).geometry, Geometry::Line { .. }));
+    let uses = |r: &Ref| -> Vec<Kind> {
+        let mut k: Vec<Kind> =
+            s[0].constraints.iter().filter(|c| c.refs.contains(r)).map(|c| c.kind).collect();
+        k.sort_by_key(|k| format!("{k:?}"));
+        k
+    };
+    assert_eq!(
+        uses(&whole(zero)),
+        [Kind::Perpendicular, Kind::PointOnObject, Kind::PointOnObject, Kind::Vertical]
+    );
+    for end in ["start", "end"] {
+        assert_eq!(uses(&whole(&format!("{zero}#{end}"))), [Kind::Coincident, Kind::PointOnObject]);
+    }
+    assert!(s[0].skipped.iter().all(|k| !k.reason.contains(zero)));
     // Driven (reference) dimensions carry no value in the file.
     let c = constraint(&s[0], "8ByAct7U-zcxo-uNBb-MQog-EfCcXD3sOVtJ");
     assert_eq!((c.kind, c.value.clone(), c.driving), (Kind::DistanceY, None, false));
@@ -512,7 +519,7 @@ fn each_entity_type() {
         edges.into_iter().chain(["center"]).map(|e| format!("{id}.{kind}.{e}")).collect()
     }
     let mut expected: Vec<String> =
-        ["p1", "s1", "z1", "l1", "c1", "a1", "a2", "e1", "e2", "e3", "b1"]
+        ["p1", "s1", "z1", "z1#start", "z1#end", "l1", "c1", "a1", "a2", "e1", "e2", "e3", "b1"]
             .map(str::to_owned)
             .into();
     expected.extend(boxes("t1", "sketch_text", ["baseline", "ascent", "left", "right"]));
@@ -535,14 +542,25 @@ fn each_entity_type() {
         Geometry::Segment { start: at("10", "0"), end: at("10", "15") }
     );
     assert_eq!(constraint(s, "m1#ratio").value, Some(n("1.5")));
-    assert_eq!(s.constraints.len(), 2 * 9);
+    // Two boxes, and the zero-length line's ends on its carrier.
+    assert_eq!(s.constraints.len(), 2 * 9 + 2);
     assert_eq!(entity(s, "p1").geometry, Geometry::Point { at: at("10", "20") });
     assert_eq!(
         entity(s, "s1").geometry,
         Geometry::Segment { start: at("1", "0"), end: at("31", "0") }
     );
     assert!(entity(s, "s1").construction && !entity(s, "p1").construction);
-    assert_eq!(entity(s, "z1").geometry, Geometry::Point { at: at("5", "7") });
+    // A zero-length line: its carrier (through its point, a centimetre along its direction)
+    // and its two ends on it, both at its point.
+    assert_eq!(entity(s, "z1").geometry, Geometry::Line { a: at("5", "7"), b: at("5", "17") });
+    for end in ["z1#start", "z1#end"] {
+        assert_eq!(entity(s, end).geometry, Geometry::Point { at: at("5", "7") });
+        let on = constraint(s, &format!("{end}-on"));
+        assert_eq!(
+            (on.kind, on.refs.clone()),
+            (Kind::PointOnObject, vec![whole(end), whole("z1")])
+        );
+    }
     assert_eq!(entity(s, "l1").geometry, Geometry::Line { a: at("0", "10"), b: at("1000", "10") });
     assert_eq!(
         entity(s, "c1").geometry,
@@ -716,17 +734,18 @@ fn each_constraint_type() {
         "COINCIDENT: reference to external geometry without its geometry in the file (externalSecond)"
     );
     assert_eq!(skipped(s, "k41"), "HORIZONTAL: references the unknown entity `nope`");
-    assert_eq!(c("k42"), (Kind::Coincident, vec![whole("z1"), part("s1", Part::End)]));
-    assert!(skipped(s, "k43").contains("`z1` has zero length"));
+    // A zero-length line's end is a point of its own; the line, its carrier.
+    assert_eq!(c("k42"), (Kind::Coincident, vec![whole("z1#start"), part("s1", Part::End)]));
+    assert_eq!(c("k43"), (Kind::Parallel, vec![whole("z1"), s1.clone()]));
     // a2 is clockwise in Onshape: its `.start` is the neutral end point.
     assert_eq!(c("k44"), (Kind::Coincident, vec![part("a2", Part::End), part("s4", Part::End)]));
     assert_eq!(c("k45"), (Kind::Symmetric, vec![p1.clone(), p2.clone(), s3.clone()]));
     // s2 runs from x = 30 to x = 0.
     assert_eq!((c("k46"), v("k46")), ((Kind::DistanceX, vec![s2.clone()]), Some(n("-30"))));
-    assert_eq!(s.skipped.len(), 8);
+    assert_eq!(s.skipped.len(), 7);
     // Two `#equal`s, the patterns' second and third constraints, the offsets' second and
-    // third (k51's first pair said by k49).
-    assert_eq!(s.constraints.len(), 51 - 8 + 2 + 1 + 2 + 2 + 1 + 2);
+    // third (k51's first pair said by k49), the zero-length line's ends on its carrier.
+    assert_eq!(s.constraints.len(), 51 - 7 + 2 + 1 + 2 + 2 + 1 + 2 + 2);
 }
 
 #[test]

@@ -120,7 +120,7 @@ impl Arg {
         self.shape == Shape::Point
     }
     fn is_line(&self) -> bool {
-        matches!(self.shape, Shape::Segment | Shape::Line)
+        matches!(self.shape, Shape::Segment | Shape::Line | Shape::ZeroLine)
     }
     fn is_segment(&self) -> bool {
         self.shape == Shape::Segment
@@ -139,6 +139,7 @@ impl Arg {
             self.shape,
             Shape::Segment
                 | Shape::Line
+                | Shape::ZeroLine
                 | Shape::Circle
                 | Shape::Arc { .. }
                 | Shape::Ellipse
@@ -253,14 +254,6 @@ pub(super) fn read(
             // `localMidpoint` ranks first.
             args.push(arg);
         }
-    }
-    if let Some(zero) = args.iter().chain(&axis).find(|a| a.shape == Shape::ZeroLine)
-        && !matches!(ctype, "FIX" | "PROJECTED")
-    {
-        return skip(format!(
-            "the line `{}` has zero length and is read as a point; a constraint on it as a line is not expressible",
-            zero.r.entity
-        ));
     }
     let driving = !params.flag("driven");
     let value = |role: &str, measure: Measure| -> Result<Option<Number>, String> {
@@ -487,6 +480,14 @@ pub(super) fn read(
             };
             let v = v.map(|v| drawing.oriented_angle(v, &a.r, &b.r));
             vec![with(Kind::Angle, vec![a.r.clone(), b.r.clone()], v)]
+        }
+        // Its ends fixed where they coincide, the carrier's two incidences would be one.
+        ("FIX" | "PROJECTED", [a]) if a.shape == Shape::ZeroLine => {
+            return skip(format!(
+                "fixing the zero-length line `{}` is not expressible: its ends, fixed where they \
+                 coincide, would leave its carrier's two incidences dependent",
+                a.r.entity
+            ));
         }
         ("FIX" | "PROJECTED", [a]) => vec![one(Kind::Fix, vec![a.r.clone()])],
         _ => return unexpressible(),
@@ -737,8 +738,7 @@ fn element_points(seed: &Arg, image: &Arg) -> Result<Vec<(Ref, Ref)>, String> {
     // (Arcs compare as arcs: the neutral ones all run counter-clockwise, whichever way the
     // file stores each, and a turn or a move keeps the sense, so start goes to start.)
     let kind = |a: &Arg| std::mem::discriminant(&a.shape);
-    let pointlike = |a: &Arg| matches!(a.shape, Shape::Point | Shape::ZeroLine);
-    if kind(seed) != kind(image) && !(pointlike(seed) && pointlike(image)) {
+    if kind(seed) != kind(image) {
         return Err(format!(
             "an instance is a {} where its seed is a {}",
             describe(image.shape),
@@ -747,7 +747,12 @@ fn element_points(seed: &Arg, image: &Arg) -> Result<Vec<(Ref, Ref)>, String> {
     }
     let part = |a: &Arg, p: Part| Ref::part(a.r.entity.clone(), p);
     let parts: &[Part] = match seed.shape {
-        Shape::Point | Shape::ZeroLine => return Ok(vec![(seed.r.clone(), image.r.clone())]),
+        Shape::Point => return Ok(vec![(seed.r.clone(), image.r.clone())]),
+        // A zero-length line's ends are points of their own (`<id>#start`, `<id>#end`).
+        Shape::ZeroLine => {
+            let end = |a: &Arg, e: &str| Ref::whole(format!("{}#{e}", a.r.entity));
+            return Ok(["start", "end"].map(|e| (end(seed, e), end(image, e))).to_vec());
+        }
         Shape::Segment => &[Part::Start, Part::End],
         Shape::Arc { .. } => &[Part::Center, Part::Start, Part::End],
         Shape::Circle => &[Part::Center],

@@ -10,8 +10,8 @@ use super::json::{self, Object};
 use crate::ir::{self, Coords, Geometry, Kind, Number, Part, Ref};
 
 /// A line whose parameter range is at most this long (in metres, 1e-9 mm) has zero length: it is
-/// read as a point. Onshape leaves such lines behind when fillets consume a whole side; their end
-/// parameters then agree to about 1e-17 m.
+/// read as its carrier and two points on it ([`zero_line`]). Onshape leaves such lines behind
+/// when fillets consume a whole side; their end parameters then agree to about 1e-17 m.
 const ZERO_LENGTH: f64 = 1e-12;
 
 /// How a read entity can be addressed by constraints.
@@ -19,7 +19,8 @@ const ZERO_LENGTH: f64 = 1e-12;
 pub(super) enum Shape {
     /// A point (`BTMSketchPoint`).
     Point,
-    /// A zero-length line, read as a point: `.start` and `.end` are the point itself.
+    /// A zero-length line, read as its carrier (an unbounded line, the id) and its end points
+    /// `<id>#start`, `<id>#end` on it, which `.start` and `.end` name.
     ZeroLine,
     /// A line segment.
     Segment,
@@ -74,7 +75,9 @@ pub(super) fn read(type_name: &str, msg: &Object, id: &str) -> Result<Read, Stri
                 Ok((json::number(msg, "startParam")?, json::number(msg, "endParam")?))
             };
             match geometry_type {
-                "BTCurveGeometryLine" => line(g, bounded.then(range).transpose()?, made),
+                "BTCurveGeometryLine" => {
+                    line(g, bounded.then(range).transpose()?, made, (id, construction))
+                }
                 "BTCurveGeometryCircle" => circle(g, bounded.then(range).transpose()?, made),
                 "BTCurveGeometryEllipse" => ellipse(g, bounded.then(range).transpose()?, made),
                 "BTCurveGeometrySpline" => spline(g, msg, made),
@@ -225,6 +228,7 @@ fn line(
     g: &Object,
     range: Option<(f64, f64)>,
     made: impl Fn(Geometry, Shape) -> Result<Read, String>,
+    (id, construction): (&str, bool),
 ) -> Result<Read, String> {
     let (px, py) = (json::number(g, "pntX")?, json::number(g, "pntY")?);
     let (dx, dy) = (json::number(g, "dirX")?, json::number(g, "dirY")?);
@@ -240,10 +244,40 @@ fn line(
     // Onshape's direction is a unit vector; the parameters are arc lengths along it.
     let start = point(px + t0 * dx, py + t0 * dy)?;
     if ((t1 - t0) * dx.hypot(dy)).abs() <= ZERO_LENGTH {
-        return made(Geometry::Point { at: start }, Shape::ZeroLine);
+        // (A centimetre along the line: of the size of the sketch's own distances.)
+        let through = point(px + t0 * dx + 0.01 * u.0, py + t0 * dy + 0.01 * u.1)?;
+        return Ok(zero_line(id, construction, start, through));
     }
     let end = point(px + t1 * dx, py + t1 * dy)?;
     made(Geometry::Segment { start, end }, Shape::Segment)
+}
+
+/// A zero-length line from `start` (a segment from a point to itself, whose direction the
+/// segment's own coordinates no longer hold) as what Onshape still solves: its carrier, the
+/// unbounded line `<id>` through `start` and `through` (along the file's direction),
+/// and its end points `<id>#start`, `<id>#end`, both drawn at `start`, each on the carrier
+/// (`PointOnObject`, `<id>#start-on`, `<id>#end-on`). Four degrees of freedom, as a segment
+/// has, and no degenerate equation where the ends coincide: a constraint on the line (its
+/// direction: vertical, perpendicular, tangent…) is one on the carrier, a constraint on an end
+/// point one on that point.
+fn zero_line(id: &str, construction: bool, start: Coords, through: Coords) -> Read {
+    let entity = |id: String, geometry| ir::Entity { id, geometry, construction, external: false };
+    let carrier = entity(id.to_owned(), Geometry::Line { a: start.clone(), b: through });
+    let ends = ["start", "end"]
+        .map(|end| entity(format!("{id}#{end}"), Geometry::Point { at: start.clone() }));
+    let on = ends
+        .iter()
+        .map(|p| ir::Constraint {
+            id: format!("{}-on", p.id),
+            kind: Kind::PointOnObject,
+            refs: vec![Ref::whole(p.id.clone()), Ref::whole(id)],
+            value: None,
+            driving: true,
+        })
+        .collect();
+    let mut entities = vec![(carrier, Shape::ZeroLine)];
+    entities.extend(ends.into_iter().map(|p| (p, Shape::Point)));
+    Read::Composite(entities, on, Vec::new())
 }
 
 fn circle(
@@ -719,7 +753,7 @@ impl Table {
     fn part(&self, base: &str, shape: Shape, suffix: &str, value: &str) -> Target {
         let part = match (shape, suffix) {
             (Shape::ZeroLine, "start" | "end") => {
-                return Target::Found(Ref::whole(base), Shape::Point);
+                return Target::Found(Ref::whole(format!("{base}#{suffix}")), Shape::Point);
             }
             (Shape::Segment | Shape::Spline, "start") => Part::Start,
             (Shape::Segment | Shape::Spline, "end") => Part::End,

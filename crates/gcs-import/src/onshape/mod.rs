@@ -14,7 +14,7 @@
 //! | Onshape | neutral sketch |
 //! |---|---|
 //! | `BTMSketchPoint` | `Point` |
-//! | `BTMSketchCurveSegment` + `BTCurveGeometryLine` | `Segment` from `pnt + startParam·dir` to `pnt + endParam·dir`; a `Point` (at the start) when the parameter range is ≤ 1e-12 m (a zero-length line; its `.start` and `.end` are the point) |
+//! | `BTMSketchCurveSegment` + `BTCurveGeometryLine` | `Segment` from `pnt + startParam·dir` to `pnt + endParam·dir`; when the parameter range is ≤ 1e-12 m (a zero-length line), its carrier `Line` (the id) and its ends `Point`s `<id>#start`, `<id>#end` on it (`PointOnObject`, `<id>#start-on`, `<id>#end-on`), which `.start` and `.end` name |
 //! | `BTMSketchCurve` + `BTCurveGeometryLine` | `Line` (unbounded) |
 //! | `BTMSketchCurve` + `BTCurveGeometryCircle` | `Circle` |
 //! | `BTMSketchCurveSegment` + `BTCurveGeometryCircle` | `Arc`: the point at parameter t is `c + r(cos t·u + s·sin t·u⊥)`, u = (xDir, yDir), s = −1 when `clockwise`; a clockwise arc has its ends swapped (Onshape's `.start` is the neutral `End`) |
@@ -61,8 +61,8 @@
 //! not in the file), circular patterns of other than 2 or 4 instances,
 //! silhouette projections, other types; a line–circle distance;
 //! anything with a reference to external geometry ("reference to external geometry without its
-//! geometry in the file"); a reference to a skipped entity or to an unknown id; a zero-length
-//! line used as a line; a driving dimension whose expression cannot be evaluated (variables).
+//! geometry in the file"); a reference to a skipped entity or to an unknown id; a fix of a
+//! zero-length line; a driving dimension whose expression cannot be evaluated (variables).
 //! A second entity or constraint with an id already taken is skipped too. Not read: the angle
 //! dimension's `aligned`/`clockwise`/`flipped` flags (the drawing orients it) and the distances'
 //! `halfSpace` options: Onshape may measure a point–circle distance to the far side of the
