@@ -363,7 +363,7 @@ impl Homotopy<'_> {
             let (h, hz, _) = self.eval(&z, C::new(t, 0.0));
             let Some((dz, _, _)) = lu_solve(hz, h, m) else { break };
             let step = norm(&dz);
-            if !(step < last) {
+            if step.is_nan() || step >= last {
                 break;
             }
             for (a, d) in z.iter_mut().zip(&dz) {
