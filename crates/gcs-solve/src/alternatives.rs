@@ -45,6 +45,9 @@ pub struct PathCounts {
     pub singular: usize,
     /// Paths that ended neither at a solution nor at infinity.
     pub failed: usize,
+    /// Paths that met another path at a checkpoint `t < 1` (a jump detected) and were tracked
+    /// again ([`homotopy::Ends::met`]); those still meeting are in `failed`.
+    pub met: usize,
 }
 
 /// Why a node's candidates may not be all its real solutions (a plan step with `complete`
@@ -792,6 +795,7 @@ fn solve_param(
         real: found.len(),
         singular: ends.singular,
         failed: ends.failed,
+        met: ends.met,
     };
     Ok((counts, found.into_iter().map(|f| f.1).collect()))
 }

@@ -40,8 +40,16 @@
 //!   of such a collision is tracked again with smaller steps (a tenth, then a hundredth of
 //!   the first), and the paths whose ends still collide count as failed, all but one. The
 //!   solution set is [`Ends::complete`] only when no path failed: every path decided (a
-//!   distinct nonsingular solution, infinity, or a singular end). A path that jumped onto a
-//!   path to infinity or to a singular end leaves no collision and is not detected.
+//!   distinct nonsingular solution, infinity, or a singular end).
+//! - A path that jumped onto a path to infinity or to a singular end leaves no collision.
+//!   So every path is tracked through the same values of `t` (the checkpoints 0.1, 0.2, …,
+//!   0.9, 0.99: its steps shortened to land on them) and the paths are compared there: two
+//!   paths within 1e-6 of the size of each other, and still within 1e-11 once each is
+//!   corrected by Newton at that `t` to the rounding, are one path twice (distinct paths do
+//!   not meet for `t < 1`). Both are tracked again like a collision's, and what still meets
+//!   counts as failed paths, all but one. No checkpoint beyond `t = 0.99`: there the paths
+//!   to one singular end or one point at infinity draw together, and a jump after it onto
+//!   such a path is still not detected.
 //!
 //! All of this is floating point: the counts are numerical results, reported as such.
 
@@ -87,6 +95,10 @@ pub struct Ends {
     /// solution: lost, undecided by the endgame, or ending (after re-tracking) at a solution
     /// another path ended at (a jump: each nonsingular solution ends one path).
     pub failed: usize,
+    /// Paths found at the same point as another path at a checkpoint `t < 1` on their first
+    /// tracking (a jump detected), then tracked again: diagnostic, no path of it is missing
+    /// unless counted in `failed`.
+    pub met: usize,
 }
 
 impl Ends {
@@ -161,6 +173,52 @@ struct Track {
     /// Where the path was when `1 − t` first fell below 1e-2 (`1 − t`, `z`): the Cauchy
     /// endgame's start.
     endgame: Option<(f64, Vec<C>)>,
+    /// Where the path was at each of the [`CHECKPOINTS`] it reached, in order.
+    marks: Vec<Vec<C>>,
+}
+
+/// The values of `t` every path is tracked through exactly (its steps shortened to land on
+/// them), where the paths are compared ([`meetings`]): with a generic `γ` distinct paths never
+/// meet for `t < 1`, so two paths at the same point there are one path twice — one of them
+/// jumped. Dense enough that a path stopped early (at infinity, or lost) has been compared
+/// shortly before; none beyond `1 − t = 10⁻²`, where the paths to one singular end or to one
+/// point at infinity draw together (as a power of `1 − t`: two paths of the sphere of 6
+/// points, seed 6, to infinity were 1.5e-4 of their size apart at `1 − t = 10⁻²` and 1.5e-6
+/// at 10⁻³).
+const CHECKPOINTS: [f64; 10] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.99];
+
+/// How close (relative to the size, on the chart) two paths at a checkpoint are to be
+/// compared more closely: each corrected by Newton at that `t` to the rounding, then the same
+/// point when within [`SAME_POINT`] of each other. The corrector leaves a point within 1e-9
+/// of the size of its path; distinct paths stay much further apart, and each Newton
+/// converges to its own.
+const NEAR: f64 = 1e-6;
+
+/// Two points corrected to the rounding at one `t` are on one path within this (relative to
+/// the size).
+const SAME_POINT: f64 = 1e-11;
+
+/// How paths are tracked: the largest step and how far the corrector's first Newton step may
+/// reach (a fraction of the size). Coarser settings than [`Tracking::DEFAULT`]'s make paths
+/// jump (the tests provoke jumps so).
+#[derive(Clone, Copy, Debug)]
+struct Tracking {
+    max_step: f64,
+    reach: f64,
+    /// Whether the paths are compared at the [`CHECKPOINTS`].
+    compare: bool,
+    /// `γ` itself (`None`: random). Near the real line paths pass close to one another
+    /// (for real `γ` they may meet for real `t`): the tests provoke jumps so.
+    gamma: Option<C>,
+    /// A jump forced, for the tests: `(k, l, always)` tracks path `k` from path `l`'s start
+    /// on its first tracking (with `always`, also when tracked again), as if it had jumped to
+    /// path `l` at once.
+    divert: Option<(usize, usize, bool)>,
+}
+
+impl Tracking {
+    const DEFAULT: Tracking =
+        Tracking { max_step: 0.1, reach: 0.05, compare: true, gamma: None, divert: None };
 }
 
 impl Track {
@@ -180,6 +238,7 @@ impl Track {
 /// The homotopy in projective coordinates `z = (z₀, z₁ … z_n)` on the chart `a·z = 1`.
 struct Homotopy<'a> {
     target: &'a Target<'a>,
+    tracking: Tracking,
     gamma: C,
     chart: Vec<C>,
     /// The two-homogeneous start system: per equation, its linear factors, each with its
@@ -273,12 +332,13 @@ impl Homotopy<'_> {
         let m = self.target.n + 1;
         let mut z = z.to_vec();
         let size = norm(&z);
-        let mut last = 0.05 * size;
+        let reach = self.tracking.reach * size;
+        let mut last = reach;
         for _ in 0..3 {
             let (h, hz, _) = self.eval(&z, t);
             let (dz, _, _) = lu_solve(hz, h, m)?;
             let step = norm(&dz);
-            if !(step <= 0.25 * last) && last != 0.05 * size || !(step <= last) {
+            if !(step <= 0.25 * last) && last != reach || !(step <= last) {
                 return None;
             }
             for (a, d) in z.iter_mut().zip(&dz) {
@@ -290,6 +350,31 @@ impl Homotopy<'_> {
             last = step;
         }
         (last <= 1e-9 * size).then_some(z)
+    }
+
+    /// Newton at fixed `t` from `z` (a point the corrector left on a path) until its steps
+    /// reach the rounding (below 1e-14 of the size, or no longer shrinking; at most eight):
+    /// the path's point at `t` to the last digits, to tell two close paths apart.
+    fn polish(&self, z: &[C], t: f64) -> Vec<C> {
+        let m = self.target.n + 1;
+        let mut z = z.to_vec();
+        let mut last = f64::INFINITY;
+        for _ in 0..8 {
+            let (h, hz, _) = self.eval(&z, C::new(t, 0.0));
+            let Some((dz, _, _)) = lu_solve(hz, h, m) else { break };
+            let step = norm(&dz);
+            if step.is_nan() || step >= last {
+                break;
+            }
+            for (a, d) in z.iter_mut().zip(&dz) {
+                *a -= d;
+            }
+            if step <= 1e-14 * norm(&z) {
+                break;
+            }
+            last = step;
+        }
+        z
     }
 
     /// Tracks the path from `z` at `t = 0` towards `t = 1`, steps at most `max_step`: they
@@ -305,23 +390,36 @@ impl Homotopy<'_> {
         let mut early: Option<(f64, f64)> = None;
         let mut endgame: Option<(f64, Vec<C>)> = None;
         let mut last_decade: Option<(f64, Vec<C>)> = None;
+        let mut marks: Vec<Vec<C>> = Vec::new();
         let ratio = |z: &[C]| z[0].norm() / norm(z);
         for _ in 0..2_000 {
             let left = 1.0 - t;
             if left <= 1e-8 {
                 break;
             }
-            let dt = h.min(0.5 * left);
+            let mut dt = h.min(0.5 * left);
+            // Onto the next checkpoint rather than past it (at exactly its `t`).
+            let mark = CHECKPOINTS.get(marks.len()).filter(|&&c| t + dt >= c);
+            if let Some(&c) = mark {
+                dt = c - t;
+            }
             match self.rk4(&z, t, dt).and_then(|p| self.correct(&p, C::new(t + dt, 0.0))) {
                 Some(next) if next.iter().all(|c| c.re.is_finite() && c.im.is_finite()) => {
                     z = next;
-                    t += dt;
+                    match mark {
+                        Some(&c) => {
+                            t = c;
+                            marks.push(z.clone());
+                        }
+                        None => t += dt,
+                    }
                     successes += 1;
                     if successes >= 3 {
                         h = (h * 2.0).min(max_step);
                         successes = 0;
                     }
-                    if early.is_none() && 1.0 - t <= 1e-2 {
+                    // (The last checkpoint, 0.99, counts: `1 − 0.99` rounds above 1e-2.)
+                    if early.is_none() && 1.0 - t <= 1e-2 * (1.0 + 1e-9) {
                         early = Some((1.0 - t, ratio(&z)));
                         endgame = Some((1.0 - t, z.clone()));
                     }
@@ -348,7 +446,16 @@ impl Homotopy<'_> {
             }
         }
         let left = 1.0 - t;
-        Track { ratio: ratio(&z), early, left, reached: left <= 1e-8, last_decade, z, endgame }
+        Track {
+            ratio: ratio(&z),
+            early,
+            left,
+            reached: left <= 1e-8,
+            last_decade,
+            z,
+            endgame,
+            marks,
+        }
     }
 
     fn rk4(&self, z: &[C], t: f64, dt: f64) -> Option<Vec<C>> {
@@ -707,13 +814,23 @@ fn start_system<'t>(target: &'t Target<'_>) -> (Option<&'t (Vec<bool>, Vec<[u32;
 /// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
 /// `max_paths` (or [`MAX_PATHS`]) paths.
 pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
+    solve_tracking(target, seed, max_paths, Tracking::DEFAULT)
+}
+
+/// [`solve`] with the paths tracked as `tracking` says.
+fn solve_tracking(
+    target: &Target<'_>,
+    seed: u64,
+    max_paths: usize,
+    tracking: Tracking,
+) -> Option<Ends> {
     let n = target.n;
     let mut rng = SplitMix64::new(seed);
     let mut unit = || {
         let a = std::f64::consts::TAU * rng.unit_f64();
         C::new(a.cos(), a.sin())
     };
-    let gamma = unit();
+    let gamma = tracking.gamma.unwrap_or_else(&mut unit);
     let chart: Vec<C> = (0..=n).map(|_| unit()).collect();
     let (groups, count) = start_system(target);
     if count > max_paths.min(MAX_PATHS) {
@@ -745,7 +862,7 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
     if paths > max_paths {
         return None;
     }
-    let homotopy = Homotopy { target, gamma, chart: chart.clone(), factors };
+    let homotopy = Homotopy { target, tracking, chart: chart.clone(), gamma, factors };
     let mut ends = Ends { paths, ..Ends::default() };
     // On the chart.
     let starts: Vec<Vec<C>> = starts
@@ -755,25 +872,30 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
             z.iter().map(|v| v / s).collect()
         })
         .collect();
+    let first_step = tracking.max_step;
+    let run = |k: usize, step: f64| -> (End, Vec<Vec<C>>) {
+        let z = match tracking.divert {
+            Some((from, to, always)) if k == from && (always || step == first_step) => &starts[to],
+            _ => &starts[k],
+        };
+        let track = homotopy.track(z.clone(), step);
+        (end_of(&homotopy, &track), track.marks)
+    };
     // The paths on the machine's cores (none spawned where threads do not exist), each
     // thread a contiguous share; then merged in order, so that the result is the same on
     // any number of cores.
     let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get).min(8);
     let share = starts.len().div_ceil(threads.max(1)).max(1);
-    let first: Vec<End> = if threads <= 1 || starts.len() < 8 {
-        starts.iter().map(|z| end_of(&homotopy, &homotopy.track(z.clone(), 0.1))).collect()
+    let first: Vec<(End, Vec<Vec<C>>)> = if threads <= 1 || starts.len() < 8 {
+        (0..starts.len()).map(|k| run(k, first_step)).collect()
     } else {
         std::thread::scope(|scope| {
-            let handles: Vec<_> = starts
-                .chunks(share)
-                .map(|chunk| {
-                    let homotopy = &homotopy;
-                    scope.spawn(move || {
-                        chunk
-                            .iter()
-                            .map(|z| end_of(homotopy, &homotopy.track(z.clone(), 0.1)))
-                            .collect::<Vec<End>>()
-                    })
+            let handles: Vec<_> = (0..starts.len())
+                .step_by(share)
+                .map(|from| {
+                    let run = &run;
+                    let chunk = from..(from + share).min(starts.len());
+                    scope.spawn(move || chunk.map(|k| run(k, first_step)).collect::<Vec<_>>())
                 })
                 .collect();
             handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
@@ -783,33 +905,55 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         // (A thread that failed: nothing is claimed.)
         return None;
     }
-    let mut results = first;
+    let (mut results, mut marks): (Vec<End>, Vec<Vec<Vec<C>>>) = first.into_iter().unzip();
     // The largest step each path was last tracked with.
-    let mut steps = vec![0.1; starts.len()];
+    let mut steps = vec![first_step; starts.len()];
     // A path the tracker lost is tracked again with smaller steps.
-    for ((z, result), used) in starts.iter().zip(results.iter_mut()).zip(steps.iter_mut()) {
-        if matches!(result, End::Failed) {
-            *result = end_of(&homotopy, &homotopy.track(z.clone(), 0.01));
-            *used = 0.01;
+    for k in 0..starts.len() {
+        if matches!(results[k], End::Failed) && steps[k] > first_step / 10.0 {
+            (results[k], marks[k]) = run(k, first_step / 10.0);
+            steps[k] = first_step / 10.0;
         }
     }
-    // Paths that end at the same nonsingular solution: with a generic γ the paths are disjoint
-    // and each such solution ends exactly one, so all but one of them jumped to another path
-    // on the way (which one is not known), and as many solutions may be missing. Every path
-    // of such a collision is tracked again with smaller steps (a tenth, then a hundredth),
-    // until no two ends agree; what then still agrees counts as failed paths, all but one.
-    for step in [0.01, 0.001] {
-        let colliding = collisions(&results);
-        if colliding.is_empty() {
+    // Two paths at the same point at a checkpoint `t < 1`, or ending at the same nonsingular
+    // solution: with a generic γ the paths are disjoint and each such solution ends exactly
+    // one, so one of them jumped to the other on the way (which one is not known) — and
+    // whatever its own path ended at (a solution, or infinity, or a singular end) may be
+    // missing. Every path of such a meeting or collision is tracked again with smaller steps
+    // (a tenth, then a hundredth of the first), until none meet; what then still meets
+    // counts as failed paths, all but one.
+    let compare = |marks: &[Vec<Vec<C>>]| {
+        if tracking.compare {
+            meetings(marks, &|z, t| homotopy.polish(z, t))
+        } else {
+            vec![None; marks.len()]
+        }
+    };
+    let met = compare(&marks);
+    ends.met = met.iter().filter(|p| p.is_some()).count();
+    let mut met = met;
+    for step in [first_step / 10.0, first_step / 100.0] {
+        let mut suspects: Vec<usize> = collisions(&results);
+        suspects.extend((0..starts.len()).filter(|&k| met[k].is_some()));
+        suspects.sort_unstable();
+        suspects.dedup();
+        if suspects.is_empty() {
             break;
         }
         // (A path tracked with this step already would end where it did.)
-        for k in colliding {
+        for k in suspects {
             if steps[k] <= step {
                 continue;
             }
-            results[k] = end_of(&homotopy, &homotopy.track(starts[k].clone(), step));
+            (results[k], marks[k]) = run(k, step);
             steps[k] = step;
+        }
+        met = compare(&marks);
+    }
+    // What still meets another path: all but one of each meeting fail.
+    for (k, other) in met.iter().enumerate() {
+        if other.is_some_and(|l| l < k) {
+            results[k] = End::Failed;
         }
     }
     for result in results {
@@ -823,6 +967,64 @@ pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
         }
     }
     Some(ends)
+}
+
+/// For each path, the first (lowest) other path it is at the same point as at some
+/// checkpoint both reached, if any: within [`NEAR`] of each other, and within [`SAME_POINT`]
+/// once each is corrected to the rounding by Newton at that `t` (`polish`). `marks[k]`: path
+/// `k`'s points at the [`CHECKPOINTS`] it reached, in order. Sorted by a fixed real linear
+/// form per checkpoint, so that only neighbours within the tolerance are compared: about
+/// `P log P` per checkpoint for `P` paths.
+fn meetings(marks: &[Vec<Vec<C>>], polish: &dyn Fn(&[C], f64) -> Vec<C>) -> Vec<Option<usize>> {
+    let mut met: Vec<Option<usize>> = vec![None; marks.len()];
+    let width = marks.iter().flatten().map(Vec::len).max().unwrap_or(0);
+    // A fixed form with distinct irrational-looking weights, `|w| ≤ √width`.
+    let weights: Vec<C> = (0..width)
+        .map(|j| {
+            let a = 0.618_033_988_749_895 * (j + 1) as f64;
+            C::new((a * 7.0).sin(), (a * 11.0).cos()) * std::f64::consts::FRAC_1_SQRT_2
+        })
+        .collect();
+    let reach = (width as f64).sqrt();
+    for c in 0..CHECKPOINTS.len() {
+        let mut at: Vec<(f64, usize)> = marks
+            .iter()
+            .enumerate()
+            .filter_map(|(k, m)| {
+                let z = m.get(c)?;
+                let key: C = z.iter().zip(&weights).map(|(a, w)| a * w).sum();
+                Some((key.re, k))
+            })
+            .collect();
+        if at.len() < 2 {
+            continue;
+        }
+        let largest = at.iter().map(|&(_, k)| norm(&marks[k][c])).fold(0.0f64, f64::max);
+        // Two points within the tolerance have keys within this (|Re w·(a − b)| ≤ |w| |a − b|).
+        let window = reach * NEAR * (1.0 + largest);
+        at.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for i in 0..at.len() {
+            for &(key, l) in &at[i + 1..] {
+                if key - at[i].0 > window {
+                    break;
+                }
+                let k = at[i].1;
+                let (a, b) = (&marks[k][c], &marks[l][c]);
+                if same_within(a, b, NEAR)
+                    && same_within(
+                        &polish(a, CHECKPOINTS[c]),
+                        &polish(b, CHECKPOINTS[c]),
+                        SAME_POINT,
+                    )
+                {
+                    let (lo, hi) = (k.min(l), k.max(l));
+                    met[hi] = Some(met[hi].map_or(lo, |m| m.min(lo)));
+                    met[lo] = Some(met[lo].map_or(hi, |m| m.min(hi)));
+                }
+            }
+        }
+    }
+    met
 }
 
 #[cfg(test)]
@@ -950,6 +1152,79 @@ mod tests {
         assert_eq!(collisions(&results), vec![0, 3]);
         let results = [at(1.0), at(2.0), End::Failed, End::Failed];
         assert!(collisions(&results).is_empty());
+    }
+
+    /// `n` quadrics in `n` unknowns without squares: random complex combinations of the
+    /// products `x_i x_j` (`i < j`), the `x_i` and 1. Their quadratic parts all vanish at the
+    /// coordinate points at infinity, so of the `2^n` paths many end there (singular ends).
+    fn squarefree_quadrics(n: usize, seed: u64) -> Vec<Vec<C>> {
+        let mut rng = SplitMix64::new(seed);
+        let terms = n * (n - 1) / 2 + n + 1;
+        let mut value = || C::new(rng.unit_f64() - 0.5, rng.unit_f64() - 0.5) * 4.0;
+        (0..n).map(|_| (0..terms).map(|_| value()).collect()).collect()
+    }
+
+    fn eval_squarefree(coefficients: &[Vec<C>], x: &[C]) -> (Vec<C>, Vec<C>) {
+        let n = x.len();
+        let (mut f, mut j) = (vec![c(0.0); n], vec![c(0.0); n * n]);
+        for (i, row) in coefficients.iter().enumerate() {
+            let mut k = 0;
+            for a in 0..n {
+                for b in a + 1..n {
+                    f[i] += row[k] * x[a] * x[b];
+                    j[i * n + a] += row[k] * x[b];
+                    j[i * n + b] += row[k] * x[a];
+                    k += 1;
+                }
+            }
+            for a in 0..n {
+                f[i] += row[k] * x[a];
+                j[i * n + a] += row[k];
+                k += 1;
+            }
+            f[i] += row[k];
+        }
+        (f, j)
+    }
+
+    /// A path that jumps onto a path going to infinity leaves no two ends at one solution: the
+    /// ends alone cannot tell (one solution silently missing), the checkpoints can. The jump
+    /// is forced — path `k` tracked from path `l`'s start, so the two are one path throughout
+    /// — on three square-free quadrics (5 solutions, 3 paths at infinity): without the
+    /// comparison some `(k, l)` loses a solution with every path decided; with it, the pair
+    /// is seen at the checkpoints and tracked again — all 5 found when the jump does not
+    /// recur, `complete` false when it does.
+    #[test]
+    fn a_jump_onto_a_path_to_infinity_is_detected() {
+        let coefficients = squarefree_quadrics(3, 1);
+        let eval = |x: &[C]| eval_squarefree(&coefficients, x);
+        let t = Target { n: 3, degrees: vec![2; 3], eval: &eval, groups: None };
+        let truth = solve(&t, 7, MAX_PATHS).unwrap();
+        assert_eq!((truth.paths, truth.solutions.len(), truth.at_infinity), (8, 5, 3), "{truth:?}");
+        assert!(truth.complete() && truth.met == 0, "{truth:?}");
+        let with = |divert, compare| {
+            solve_tracking(&t, 7, MAX_PATHS, Tracking { divert, compare, ..Tracking::DEFAULT })
+                .unwrap()
+        };
+        let mut silent = 0;
+        for k in 0..8 {
+            for l in (0..8).filter(|&l| l != k) {
+                let blind = with(Some((k, l, true)), false);
+                if !(blind.complete() && blind.solutions.len() == 4) {
+                    continue;
+                }
+                silent += 1;
+                // Seen and tracked again: the jump does not recur, every solution is found.
+                let once = with(Some((k, l, false)), true);
+                assert_eq!((once.solutions.len(), once.failed, once.met), (5, 0, 2), "{once:?}");
+                // It recurs: the node is not complete, and says which path failed.
+                let always = with(Some((k, l, true)), true);
+                assert_eq!((always.solutions.len(), always.failed), (4, 1), "{always:?}");
+                assert!(!always.complete());
+            }
+        }
+        // (A path to a solution onto each of the 3 paths to infinity.)
+        assert_eq!(silent, 5 * 3);
     }
 
     /// Too many paths are refused.
