@@ -107,6 +107,19 @@ fn strings(ids: &[&str]) -> Vec<String> {
     ids.iter().map(|s| s.to_string()).collect()
 }
 
+/// The arc `a` about (10, 5) of radius 5, from (10, 0) (where it is tangent to the x axis)
+/// counter-clockwise to (15, 5).
+fn quarter_arc() -> Entity {
+    entity(
+        "a",
+        Geometry::Arc {
+            center: vec![n(10), n(5)],
+            start: vec![n(10), n(0)],
+            end: vec![n(15), n(5)],
+        },
+    )
+}
+
 /// A fillet: a segment ending where an arc starts, tangent there, written as CAD programs
 /// write it (one constraint). It lowers into the transversal formulation.
 #[test]
@@ -114,14 +127,7 @@ fn tangency_at_shared_ends_is_one_transversal_constraint() {
     let s = sketch(
         vec![
             entity("l", Geometry::Segment { start: vec![n(0), n(0)], end: vec![n(10), n(0)] }),
-            entity(
-                "a",
-                Geometry::Arc {
-                    center: vec![n(10), n(5)],
-                    start: vec![n(10), n(0)],
-                    end: vec![n(15), n(5)],
-                },
-            ),
+            quarter_arc(),
         ],
         vec![constraint(
             "t",
@@ -304,14 +310,7 @@ fn tangency_of_a_line_at_a_point_on_it_is_transversal() {
         vec![
             entity("l", Geometry::Line { a: vec![n(0), n(0)], b: vec![n(10), n(0)] }),
             entity("p", Geometry::Point { at: vec![n(10), n(0)] }),
-            entity(
-                "a",
-                Geometry::Arc {
-                    center: vec![n(10), n(5)],
-                    start: vec![n(10), n(0)],
-                    end: vec![n(15), n(5)],
-                },
-            ),
+            quarter_arc(),
         ],
         vec![
             constraint("on", Kind::PointOnObject, vec![Ref::whole("p"), Ref::whole("l")], None),
