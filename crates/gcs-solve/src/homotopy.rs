@@ -198,18 +198,20 @@ const NEAR: f64 = 1e-6;
 /// the size).
 const SAME_POINT: f64 = 1e-11;
 
-/// How paths are tracked: the largest step and how far the corrector's first Newton step may
-/// reach (a fraction of the size). Coarser settings than [`Tracking::DEFAULT`]'s make paths
-/// jump (the tests provoke jumps so).
+/// The largest step a path is first tracked with (a tenth, then a hundredth of it when it is
+/// tracked again).
+const FIRST_STEP: f64 = 0.1;
+
+/// How far the corrector's first Newton step may reach, a fraction of the size (a larger
+/// correction may land on another path).
+const REACH: f64 = 0.05;
+
+/// How paths are tracked: [`Tracking::DEFAULT`] in [`solve`]; the tests switch the comparison
+/// off and force jumps.
 #[derive(Clone, Copy, Debug)]
 struct Tracking {
-    max_step: f64,
-    reach: f64,
     /// Whether the paths are compared at the [`CHECKPOINTS`].
     compare: bool,
-    /// `γ` itself (`None`: random). Near the real line paths pass close to one another
-    /// (for real `γ` they may meet for real `t`): the tests provoke jumps so.
-    gamma: Option<C>,
     /// A jump forced, for the tests: `(k, l, always)` tracks path `k` from path `l`'s start
     /// on its first tracking (with `always`, also when tracked again), as if it had jumped to
     /// path `l` at once.
@@ -217,8 +219,7 @@ struct Tracking {
 }
 
 impl Tracking {
-    const DEFAULT: Tracking =
-        Tracking { max_step: 0.1, reach: 0.05, compare: true, gamma: None, divert: None };
+    const DEFAULT: Tracking = Tracking { compare: true, divert: None };
 }
 
 impl Track {
@@ -238,7 +239,6 @@ impl Track {
 /// The homotopy in projective coordinates `z = (z₀, z₁ … z_n)` on the chart `a·z = 1`.
 struct Homotopy<'a> {
     target: &'a Target<'a>,
-    tracking: Tracking,
     gamma: C,
     chart: Vec<C>,
     /// The two-homogeneous start system: per equation, its linear factors, each with its
@@ -332,7 +332,7 @@ impl Homotopy<'_> {
         let m = self.target.n + 1;
         let mut z = z.to_vec();
         let size = norm(&z);
-        let reach = self.tracking.reach * size;
+        let reach = REACH * size;
         let mut last = reach;
         for _ in 0..3 {
             let (h, hz, _) = self.eval(&z, t);
@@ -830,7 +830,7 @@ fn solve_tracking(
         let a = std::f64::consts::TAU * rng.unit_f64();
         C::new(a.cos(), a.sin())
     };
-    let gamma = tracking.gamma.unwrap_or_else(&mut unit);
+    let gamma = unit();
     let chart: Vec<C> = (0..=n).map(|_| unit()).collect();
     let (groups, count) = start_system(target);
     if count > max_paths.min(MAX_PATHS) {
@@ -862,7 +862,7 @@ fn solve_tracking(
     if paths > max_paths {
         return None;
     }
-    let homotopy = Homotopy { target, tracking, chart: chart.clone(), gamma, factors };
+    let homotopy = Homotopy { target, gamma, chart: chart.clone(), factors };
     let mut ends = Ends { paths, ..Ends::default() };
     // On the chart.
     let starts: Vec<Vec<C>> = starts
@@ -872,10 +872,9 @@ fn solve_tracking(
             z.iter().map(|v| v / s).collect()
         })
         .collect();
-    let first_step = tracking.max_step;
     let run = |k: usize, step: f64| -> (End, Vec<Vec<C>>) {
         let z = match tracking.divert {
-            Some((from, to, always)) if k == from && (always || step == first_step) => &starts[to],
+            Some((from, to, always)) if k == from && (always || step == FIRST_STEP) => &starts[to],
             _ => &starts[k],
         };
         let track = homotopy.track(z.clone(), step);
@@ -887,7 +886,7 @@ fn solve_tracking(
     let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get).min(8);
     let share = starts.len().div_ceil(threads.max(1)).max(1);
     let first: Vec<(End, Vec<Vec<C>>)> = if threads <= 1 || starts.len() < 8 {
-        (0..starts.len()).map(|k| run(k, first_step)).collect()
+        (0..starts.len()).map(|k| run(k, FIRST_STEP)).collect()
     } else {
         std::thread::scope(|scope| {
             let handles: Vec<_> = (0..starts.len())
@@ -895,7 +894,7 @@ fn solve_tracking(
                 .map(|from| {
                     let run = &run;
                     let chunk = from..(from + share).min(starts.len());
-                    scope.spawn(move || chunk.map(|k| run(k, first_step)).collect::<Vec<_>>())
+                    scope.spawn(move || chunk.map(|k| run(k, FIRST_STEP)).collect::<Vec<_>>())
                 })
                 .collect();
             handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
@@ -907,12 +906,12 @@ fn solve_tracking(
     }
     let (mut results, mut marks): (Vec<End>, Vec<Vec<Vec<C>>>) = first.into_iter().unzip();
     // The largest step each path was last tracked with.
-    let mut steps = vec![first_step; starts.len()];
+    let mut steps = vec![FIRST_STEP; starts.len()];
     // A path the tracker lost is tracked again with smaller steps.
     for k in 0..starts.len() {
-        if matches!(results[k], End::Failed) && steps[k] > first_step / 10.0 {
-            (results[k], marks[k]) = run(k, first_step / 10.0);
-            steps[k] = first_step / 10.0;
+        if matches!(results[k], End::Failed) && steps[k] > FIRST_STEP / 10.0 {
+            (results[k], marks[k]) = run(k, FIRST_STEP / 10.0);
+            steps[k] = FIRST_STEP / 10.0;
         }
     }
     // Two paths at the same point at a checkpoint `t < 1`, or ending at the same nonsingular
@@ -929,10 +928,9 @@ fn solve_tracking(
             vec![None; marks.len()]
         }
     };
-    let met = compare(&marks);
+    let mut met = compare(&marks);
     ends.met = met.iter().filter(|p| p.is_some()).count();
-    let mut met = met;
-    for step in [first_step / 10.0, first_step / 100.0] {
+    for step in [FIRST_STEP / 10.0, FIRST_STEP / 100.0] {
         let mut suspects: Vec<usize> = collisions(&results);
         suspects.extend((0..starts.len()).filter(|&k| met[k].is_some()));
         suspects.sort_unstable();
