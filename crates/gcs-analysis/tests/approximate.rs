@@ -306,3 +306,32 @@ fn hexagon_agrees_with_float(text: &str, turns: &[u32], tested: bool) {
         assert!(a.redundant.is_empty(), "{backend:?}");
     }
 }
+
+/// The projection's result is checked constraint by constraint against the size to the degree
+/// of each residual, as the projection measures them: an equality of two point–line distances
+/// is a polynomial of degree 6 in lengths, whose rounding at a drawing of a few hundred units
+/// exceeds a tolerance meant for degree 2. Here the point where two fixed circles meet
+/// (irrational: no exact placement) is drawn 1e-7 off it, within the projection's tolerance at
+/// once; the equal distances to two fixed lines hold there (the circles are mirror images in
+/// the bisector of the lines) and are redundant.
+#[test]
+fn the_projection_is_checked_at_each_residuals_degree() {
+    const BISECTOR: &str = r#"System(dim: 2,
+      entities: [Circle(id: "k1", center: [300, 100], radius: 250), Circle(id: "k2", center: [100, 300], radius: 250),
+                 Point(id: "p", at: [345.773797471, 345.773797271]),
+                 Line(id: "l1", at: [[-7, 0], [993, 0]]), Line(id: "l2", at: [[0, 13], [0, 1013]])],
+      constraints: [Fix(id: "f1", a: "k1"), Fix(id: "f2", a: "k2"), Fix(id: "f3", a: "l1"), Fix(id: "f4", a: "l2"),
+                    Incident(id: "i1", a: "p", b: "k1"), Incident(id: "i2", a: "p", b: "k2"),
+                    EqualDistance(id: "e", a: "p", b: "l1", c: "p", d: "l2")])"#;
+    let s = System::from_ron_str(BISECTOR, None).unwrap();
+    let o = AnalysisOptions {
+        backend: Backend::Float { tolerance: 1e-9 },
+        ..AnalysisOptions::default()
+    };
+    let a = analyze(&s, &o).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(a.witness.source, WitnessSource::Approximate);
+    assert_eq!((a.dof, a.trivial_motions), (0, 0));
+    let redundant: Vec<&str> =
+        a.redundant.iter().map(|r| s.constraint(r.constraint).id.as_str()).collect();
+    assert_eq!(redundant, ["e"]);
+}

@@ -970,3 +970,40 @@ fn interpolated_splines_lower_and_count_their_points_and_handles() {
     };
     assert!((point("s.2.internal")[1] - 274.1506099700928).abs() < 1e-9);
 }
+
+/// An offset of two joined segments: its equal gaps are measured from the corner where the
+/// two offsets meet (the corner on the bisector of the two curves), not from the offsets'
+/// starts — the same equation given the offset's parallels, so the analysis is the same
+/// either way (rank, DOF, no redundancy), and the corner binds one point.
+#[test]
+fn offset_gaps_are_measured_at_the_corner_where_the_offsets_meet() {
+    let sketches = data("offset_corner.json");
+    let s = &sketches[0];
+    assert!(s.skipped.is_empty(), "{:?}", s.skipped);
+    let gap = constraint(s, "k3");
+    assert_eq!(
+        (gap.kind, gap.refs.clone()),
+        (
+            Kind::EqualPointLineDistances,
+            vec![part("o1", Part::End), whole("m1"), part("o2", Part::Start), whole("m2")]
+        )
+    );
+    // The same sketch with the gaps from the starts, as before: the same analysis.
+    let mut starts = s.clone();
+    for c in &mut starts.constraints {
+        if c.id == "k3" {
+            c.refs[0] = part("o1", Part::Start);
+            c.refs[2] = part("o2", Part::Start);
+        }
+    }
+    let analysed = |s: &Sketch| {
+        let l = gcs_import::lower(s);
+        assert!(l.complete(), "{:?}", l.skipped);
+        let a = gcs_analysis::analyze(&l.system, &Default::default()).expect("analysed");
+        (a.rank, a.dof, a.redundant.len())
+    };
+    let corner = analysed(s);
+    assert_eq!(corner, analysed(&starts));
+    // 4 segments (16) − 2 coincidences (4) − 2 parallels (2) − the equal gaps (1) − 3 motions.
+    assert_eq!(corner, (7, 16 - 7 - 3, 0));
+}

@@ -62,17 +62,18 @@ pub fn plan<F: Field>(
     witness: &[F],
     sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<F>>,
 ) -> Result<Result<Plan, Unsatisfied>, JacobianError> {
-    plan_with(system, layout, witness, sketch, &|x: &F| x.is_zero(), EchelonOptions::default())
+    plan_with(system, layout, witness, sketch, &|_, x: &F| x.is_zero(), EchelonOptions::default())
 }
 
-/// [`plan`] with a zero test and echelon options of one's own: for an approximate witness,
-/// residuals below a tolerance count as zero and the row selection uses a tolerance.
+/// [`plan`] with a zero test (of a constraint's residual) and echelon options of one's own: for
+/// an approximate witness, residuals below a tolerance count as zero and the row selection uses
+/// a tolerance.
 pub(crate) fn plan_with<F: Field>(
     system: &System,
     layout: &Layout,
     witness: &[F],
     sketch: &dyn Fn(gcs_model::EntityIdx) -> Option<Vec<F>>,
-    zero: &dyn Fn(&F) -> bool,
+    zero: &dyn Fn(ConstraintIdx, &F) -> bool,
     options: EchelonOptions,
 ) -> Result<Result<Plan, Unsatisfied>, JacobianError> {
     let mut out = Vec::with_capacity(system.constraints().len());
@@ -83,7 +84,8 @@ pub(crate) fn plan_with<F: Field>(
         // Metric distances between lines or planes need them parallel (2D lines, planes) or
         // choose their formula (3D lines).
         let first = laws::law(c.signature, 0, &local, sketch, false);
-        let variant = match first.parallel(zero) {
+        let zero = |x: &F| zero(ci, x);
+        let variant = match first.parallel(&zero) {
             Some(parallel) if first.variants == 2 => usize::from(parallel),
             Some(false) => return Ok(Err(Unsatisfied::NotParallel(ci))),
             Some(true) => 0,

@@ -486,9 +486,13 @@ pub fn find_witness(
             let Some(x) = crate::project::project(system, layout, &start, scale) else {
                 return Err(JacobianError::NoWitness(msg));
             };
-            let tol = 1e-9 * scale.max(1.0).powi(2);
+            // (Each residual against the size to its degree, as the projection measured it.)
+            let size = scale.max(1.0);
             let sketch_f = |e: EntityIdx| crate::sketch::sketch_coords_in::<f64>(system, e);
-            let zero = |v: &f64| v.abs() <= tol;
+            let zero = |c: gcs_model::ConstraintIdx, v: &f64| {
+                let degree = crate::laws::residual_degree(system.constraint(c).signature);
+                v.abs() <= 1e-9 * size.powi(degree)
+            };
             match crate::plan::plan_with(
                 system,
                 layout,

@@ -46,7 +46,7 @@
 //! | CONCENTRIC | circles, arcs / ellipses / a point and a circle | `Concentric` / `Coincident` of the centres / `Coincident` with the centre |
 //! | MIDPOINT | point, line or arc / midpoint, point, point | `Midpoint` / `Symmetric` about the midpoint |
 //! | MIRROR, SYMMETRIC | point, point, mirror line / circle, circle, line / segment, segment, line | `Symmetric` / `Symmetric` of the centres + `Equal` (`<id>#equal`) / `Symmetric` of the segments (their carriers), or a note when mirrors of both their end points about the same line say it |
-//! | OFFSET | curve, offset (`localMaster`, `localOffset` or `local2`, `local0`) [, second curve, its offset (`localSecond`, `localSecondOffset` or `local3`, `local1`)] | `Parallel` / `Concentric` of each pair (`<id>#master`, once per operation; `<id>#second`), and the equal gaps (the id): `EqualPointLineDistances` from the offsets' starts where both pairs are lines, else `EqualGaps` (a pair of circles by its two circles: a difference of radii) |
+//! | OFFSET | curve, offset (`localMaster`, `localOffset` or `local2`, `local0`) [, second curve, its offset (`localSecond`, `localSecondOffset` or `local3`, `local1`)] | `Parallel` / `Concentric` of each pair (`<id>#master`, once per operation; `<id>#second`), and the equal gaps (the id): `EqualPointLineDistances` from the offsets' starts where both pairs are lines (where the offsets are joined end to end, each from the corner it shares with its neighbour on the way to the first offset: the same equations given the parallels), else `EqualGaps` (a pair of circles by its two circles: a difference of radii) |
 //! | CIRCULAR_PATTERN (closed), LINEAR_PATTERN | pivot or directions, instances `localInstance<k>,<i>[,<j>]` | `Rotated` by i·360°/N (the drawing's sense; N ≤ 36) / `Translated` by one step along a direction segment, per point of each instance (`<id>#<k>,<i>[,<j>]`), `Equal` radii of circles (`…#radius`) |
 //! | DISTANCE (direction MINIMUM) | point–point, point–line, line–line, point–circle, circle–circle | `Distance` |
 //! | DISTANCE (HORIZONTAL, VERTICAL) | point, point | `DistanceX`, `DistanceY`, signed as the drawing shows |
@@ -225,6 +225,7 @@ fn read_sketch(
     }
     fold_implied_mirrors(&mut sketch);
     fold_repeated_offsets(&mut sketch);
+    offset_gaps_at_joints(&mut sketch);
     Ok(sketch)
 }
 
@@ -236,6 +237,108 @@ pub(super) fn fold_repeated_offsets(sketch: &mut ir::Sketch) {
     sketch
         .constraints
         .retain(|c| !c.id.ends_with("#master") || seen.insert((c.kind, c.refs.clone())));
+}
+
+/// The equal gaps of an offset operation measured at the corners where its offset segments
+/// meet. Each second pair's gap is read as equal to its first pair's, from the offsets' starts
+/// (`EqualPointLineDistances`); where the offsets of one operation are joined end to end (an end
+/// of one coincident with an end of the other), each second offset's gap is instead equal to the
+/// gap of its neighbour on the way to the first offset, both measured at their common corner.
+/// The equations are equivalent: given the parallels of the offset (`#master`, `#second`), every
+/// point of an offset segment is at the same distance from its curve (the difference of two
+/// such distances vanishes where the parallel holds, and so does its row on the tangent space),
+/// and the gaps compared along a tree from the first offset span the same equations as the gaps
+/// each compared with the first. Measured at a corner, the equation says what an offset is to a
+/// CAD user — the corner on the bisector of the two curves — and binds one point, which the
+/// witness's construction places there; from the starts, it binds the corner only through
+/// segments' directions and a far point, a loop the construction cannot close.
+fn offset_gaps_at_joints(sketch: &mut ir::Sketch) {
+    use ir::{Kind, Part, Ref};
+    use std::collections::HashMap;
+    // Coincidence classes of point references.
+    let mut class: HashMap<Ref, usize> = HashMap::new();
+    let mut parent: Vec<usize> = Vec::new();
+    fn root(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for c in &sketch.constraints {
+        if let (Kind::Coincident, [a, b]) = (c.kind, c.refs.as_slice()) {
+            let mut index = |r: &Ref| {
+                *class.entry(r.clone()).or_insert_with(|| {
+                    parent.push(parent.len());
+                    parent.len() - 1
+                })
+            };
+            let (a, b) = (index(a), index(b));
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            parent[ra] = rb;
+        }
+    }
+    let ends = |o: &str| [Part::Start, Part::End].map(|e| Ref::part(o.to_owned(), e));
+    // Where offsets `a` and `b` meet: an end of each, coincident.
+    let mut joint = |a: &str, b: &str| -> Option<(Ref, Ref)> {
+        for x in ends(a) {
+            for y in ends(b) {
+                if let (Some(&i), Some(&j)) = (class.get(&x), class.get(&y))
+                    && root(&mut parent, i) == root(&mut parent, j)
+                {
+                    return Some((x, y));
+                }
+            }
+        }
+        None
+    };
+    // The operations: the gaps with their first pair (its offset's start, its curve), each
+    // with its second pair (offset, curve).
+    let gaps: Vec<usize> = (0..sketch.constraints.len())
+        .filter(|&i| {
+            let c = &sketch.constraints[i];
+            c.kind == Kind::EqualPointLineDistances
+                && c.refs.len() == 4
+                && c.refs[0].part == Part::Start
+                && c.refs[2].part == Part::Start
+        })
+        .collect();
+    let mut operations: HashMap<(Ref, Ref), Vec<usize>> = HashMap::new();
+    for &i in &gaps {
+        let r = &sketch.constraints[i].refs;
+        operations.entry((r[0].clone(), r[1].clone())).or_default().push(i);
+    }
+    for ((first_start, first_curve), members) in operations {
+        // The offsets (the first one at 0) with their curves.
+        let mut offsets = vec![(first_start.entity.clone(), first_curve.clone())];
+        for &i in &members {
+            let r = &sketch.constraints[i].refs;
+            offsets.push((r[2].entity.clone(), r[3].clone()));
+        }
+        // Breadth first from the first offset along the joints: each offset's way there.
+        let mut via: Vec<Option<(usize, Ref, Ref)>> = vec![None; offsets.len()];
+        let mut reached = vec![false; offsets.len()];
+        reached[0] = true;
+        let mut queue = std::collections::VecDeque::from([0]);
+        while let Some(a) = queue.pop_front() {
+            for b in 0..offsets.len() {
+                if reached[b] || offsets[a].0 == offsets[b].0 {
+                    continue;
+                }
+                if let Some((x, y)) = joint(&offsets[a].0, &offsets[b].0) {
+                    reached[b] = true;
+                    via[b] = Some((a, x, y));
+                    queue.push_back(b);
+                }
+            }
+        }
+        for (k, &i) in members.iter().enumerate() {
+            if let Some((a, x, y)) = via[k + 1].clone() {
+                let c = &mut sketch.constraints[i];
+                c.refs = vec![x, offsets[a].1.clone(), y, offsets[k + 1].1.clone()];
+            }
+        }
+    }
 }
 
 /// Onshape's mirror tool writes, beside the mirror of two segments (their carriers), the
