@@ -121,6 +121,10 @@ pub(crate) struct PlaceOptions {
     /// Every run starts from the order the constraint counts allow ([`counted_order`]), not
     /// from nothing learnt. [`place`] sets it for its last attempt.
     pub(crate) counted: bool,
+    /// The first attempt of [`place`] to make ([`Stage`]): where an earlier placement of the
+    /// same system succeeded (another round of one witness search), the attempts before it
+    /// would fail again. [`Stage::Plain`]: all of them.
+    pub(crate) from: Stage,
 }
 
 /// The turns a placement took from the drawing ([`PlaceOptions::turns`]).
@@ -508,8 +512,25 @@ pub(crate) fn preferences(system: &System, layout: &Layout, rng: &mut SplitMix64
     (pref, scale)
 }
 
-/// Places every entity; returns the witness coordinates or the entity that could not be
-/// placed.
+/// The attempts of [`place`], in the order it makes them: the one that placed tells a further
+/// placement of the same system (another round of a witness search) where to start
+/// ([`PlaceOptions::from`]), so that it does not fail through the attempts before it again.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Stage {
+    /// The plain construction ([`place_with`] without the tangencies its points imply).
+    #[default]
+    Plain,
+    /// The fallback: with the tangencies of circles their points imply, in another order.
+    Fallback,
+    /// Modulo the prime: both again, taking free choices again where a square root is missing.
+    Backtrack,
+    /// Modulo the prime: every run from the order the constraint counts allow.
+    Counted,
+}
+
+/// Places every entity; returns the witness coordinates and the attempt that placed them
+/// ([`Stage`]: from [`PlaceOptions::from`] on, the attempts before it skipped), or the entity
+/// that could not be placed.
 ///
 /// `Fix` is imposed over ℚ with the sketch's values, except the rays of a fixed arc's end
 /// points: a drawn end point is seldom exactly on its circle, and the point of the circle on
@@ -522,41 +543,63 @@ pub(crate) fn place(
     pref: &[Q],
     scale: f64,
     options: &PlaceOptions,
-) -> Result<Vec<Q>, PlaceFailure> {
-    let first = place_with(system, layout, pref, scale, options, false);
+) -> Result<(Vec<Q>, Stage), PlaceFailure> {
+    // (Where the attempts start later, what the first one tried fails with is reported.)
+    let mut first: Option<PlaceFailure> = None;
+    let failed = |f: PlaceFailure, first: &mut Option<PlaceFailure>| {
+        first.get_or_insert(f);
+    };
+    if options.from <= Stage::Plain {
+        match place_with(system, layout, pref, scale, options, false) {
+            Ok(x) => return Ok((x, Stage::Plain)),
+            Err(f) => failed(f, &mut first),
+        }
+    }
     // The fallback: again with the tangencies of circles their points imply, in another order
     // (see [`Placer::fallback`]).
-    if first.is_err()
-        && let Ok(x) = place_with(system, layout, pref, scale, options, true)
-    {
-        return Ok(x);
+    if options.from <= Stage::Fallback {
+        match place_with(system, layout, pref, scale, options, true) {
+            Ok(x) => return Ok((x, Stage::Fallback)),
+            Err(f) => failed(f, &mut first),
+        }
     }
     // Modulo the prime, last: all of it again, taking free choices again where a square root
     // is missing. (Last, so that what placed before places as before.)
-    if first.is_err() && options.modular && options.turns.is_none() && !options.backtrack {
+    if options.from <= Stage::Backtrack
+        && options.modular
+        && options.turns.is_none()
+        && !options.backtrack
+    {
         // (With a budget of its own for the polynomial solves of loops: the attempts before
         // may have spent theirs.)
         let again = PlaceOptions {
             backtrack: true,
+            from: Stage::Plain,
             algebra_budget: std::rc::Rc::new(std::cell::Cell::new(2 * ALGEBRA_WORK)),
             ..options.clone()
         };
-        if let Ok(x) = place(system, layout, pref, scale, &again) {
-            return Ok(x);
+        match place(system, layout, pref, scale, &again) {
+            Ok((x, _)) => return Ok((x, Stage::Backtrack)),
+            Err(f) => failed(f, &mut first),
         }
     }
     // Modulo the prime, last of all: again, each run starting from the order the constraint
     // counts allow (see [`counted_order`]). (Not over ℚ, where a failure costs a
     // modular witness only, and the work on big numbers is better spent there.)
-    if first.is_err() && options.modular && !options.counted {
+    if options.modular && !options.counted {
         // (Once, without the fallback's other order or the tosses, and with what is left of the
         // polynomial solves' budget: a failure costs little more.)
         let again = PlaceOptions { counted: true, ..options.clone() };
-        if let Ok(x) = place_with(system, layout, pref, scale, &again, false) {
-            return Ok(x);
+        match place_with(system, layout, pref, scale, &again, false) {
+            Ok(x) => return Ok((x, Stage::Counted)),
+            Err(f) => failed(f, &mut first),
         }
     }
-    first
+    Err(first.unwrap_or(PlaceFailure {
+        entity: EntityIdx(0),
+        constraints: Vec::new(),
+        no_root: false,
+    }))
 }
 
 /// [`place`], with the implied constraints of [`with_implied`] (the tangencies of circles at a

@@ -264,6 +264,8 @@ fn modular(
             // (Modulo the further primes, one round: they are tried for a root, and the
             // first round's random choices have it as often as any other's.)
             let rounds = if q == ModP::PRIME || turns { options.rounds.max(1) + 1 } else { 1 };
+            // The attempt that placed in a round: the next rounds start there.
+            let mut from = place::Stage::Plain;
             for round in 0..rounds {
                 let taken = std::rc::Rc::new(std::cell::RefCell::new(place::TurnsTaken::default()));
                 let opts = PlaceOptions {
@@ -274,9 +276,13 @@ fn modular(
                     turns: turns.then(|| taken.clone()),
                     backtrack: false,
                     counted: false,
+                    from,
                 };
                 let coords = match place::place(system, layout, pref, scale, &opts) {
-                    Ok(coords) => coords,
+                    Ok((coords, stage)) => {
+                        from = stage;
+                        coords
+                    }
                     Err(f) => {
                         needs_root |= f.no_root;
                         continue;
@@ -419,6 +425,8 @@ pub fn find_witness(
     let mut tested = false;
     let mut failure = None;
     let rounds = options.rounds.max(1);
+    // The attempt that placed in a round: the next rounds start there.
+    let mut from = place::Stage::Plain;
     for round in 0..rounds {
         let opts = PlaceOptions {
             seed: options.seed.wrapping_mul(0x9E37_79B9).wrapping_add(round as u64 + 1),
@@ -428,9 +436,14 @@ pub fn find_witness(
             turns: None,
             backtrack: false,
             counted: false,
+            from,
         };
-        match place::place(system, layout, &pref_q, scale, &opts) {
-            Ok(coords) => match plan(
+        let placed = place::place(system, layout, &pref_q, scale, &opts);
+        if let Ok((_, stage)) = &placed {
+            from = *stage;
+        }
+        match placed {
+            Ok((coords, _)) => match plan(
                 system,
                 layout,
                 &rationals(&coords),
