@@ -115,7 +115,7 @@ pub fn sequence(n: usize, bars: &[(usize, usize)]) -> Option<Sequence> {
         }
         let mut removes = None;
         if second {
-            let [a, b, c] = [own[0].0, own[1].0, own[2].0];
+            let &[(a, _), (b, _), (c, _)] = own.as_slice() else { return None };
             let (x, y) = [(a, b), (a, c), (b, c)]
                 .into_iter()
                 .find(|&(x, y)| game.add(x, y, next_virtual))?;
