@@ -57,6 +57,7 @@
 
 pub mod alternatives;
 pub mod closed;
+pub mod henneberg;
 pub mod homotopy;
 pub mod nodes;
 pub mod plan;
