@@ -546,13 +546,10 @@ pub(crate) fn place(
 ) -> Result<(Vec<Q>, Stage), PlaceFailure> {
     // (Where the attempts start later, what the first one tried fails with is reported.)
     let mut first: Option<PlaceFailure> = None;
-    let failed = |f: PlaceFailure, first: &mut Option<PlaceFailure>| {
-        first.get_or_insert(f);
-    };
     if options.from <= Stage::Plain {
         match place_with(system, layout, pref, scale, options, false) {
             Ok(x) => return Ok((x, Stage::Plain)),
-            Err(f) => failed(f, &mut first),
+            Err(f) => _ = first.get_or_insert(f),
         }
     }
     // The fallback: again with the tangencies of circles their points imply, in another order
@@ -560,7 +557,7 @@ pub(crate) fn place(
     if options.from <= Stage::Fallback {
         match place_with(system, layout, pref, scale, options, true) {
             Ok(x) => return Ok((x, Stage::Fallback)),
-            Err(f) => failed(f, &mut first),
+            Err(f) => _ = first.get_or_insert(f),
         }
     }
     // Modulo the prime, last: all of it again, taking free choices again where a square root
@@ -580,7 +577,7 @@ pub(crate) fn place(
         };
         match place(system, layout, pref, scale, &again) {
             Ok((x, _)) => return Ok((x, Stage::Backtrack)),
-            Err(f) => failed(f, &mut first),
+            Err(f) => _ = first.get_or_insert(f),
         }
     }
     // Modulo the prime, last of all: again, each run starting from the order the constraint
@@ -592,7 +589,7 @@ pub(crate) fn place(
         let again = PlaceOptions { counted: true, ..options.clone() };
         match place_with(system, layout, pref, scale, &again, false) {
             Ok(x) => return Ok((x, Stage::Counted)),
-            Err(f) => failed(f, &mut first),
+            Err(f) => _ = first.get_or_insert(f),
         }
     }
     Err(first.unwrap_or(PlaceFailure {
