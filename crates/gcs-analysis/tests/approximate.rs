@@ -335,3 +335,31 @@ fn the_projection_is_checked_at_each_residuals_degree() {
         a.redundant.iter().map(|r| s.constraint(r.constraint).id.as_str()).collect();
     assert_eq!(redundant, ["e"]);
 }
+
+/// Fourteen constraints of a SketchGraphs sketch (`00273760…_004/1`, reduced by dropping
+/// constraints while the placement still failed): offsets of offsets (parallels and equal
+/// gaps), mirror axes and an equal length, which every order of the constructive placement
+/// fails to close, over ℚ and modulo the prime. The prime-field backends find their modular
+/// witness from the numerical projection's structure (`gcs_jacobian`'s `square`: random free
+/// coordinates, the square system solved block by block), and agree with float.
+#[test]
+fn a_sketch_no_construction_places_gets_a_modular_witness_from_its_projection() {
+    let text = include_str!("data/offsets_and_mirrors.ron");
+    let s = System::from_ron_str(text, Some("offsets_and_mirrors.ron")).unwrap();
+    let float = analyze(
+        &s,
+        &AnalysisOptions { backend: Backend::Float { tolerance: 1e-9 }, ..Default::default() },
+    )
+    .unwrap();
+    assert_eq!(float.witness.source, WitnessSource::Approximate);
+    let redundant = |a: &gcs_analysis::Analysis| -> Vec<String> {
+        a.redundant.iter().map(|r| s.constraint(r.constraint).id.clone()).collect()
+    };
+    // (The default backend: the rational placement fails, then the modular one, then this.)
+    let a = analyze(&s, &AnalysisOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(a.witness.source, WitnessSource::Modular);
+    let msg = a.witness.no_exact_witness.as_ref().map(ToString::to_string).unwrap_or_default();
+    assert!(msg.contains("cannot be placed rationally"), "{msg}");
+    assert_eq!((a.rank, a.dof, a.trivial_motions), (float.rank, float.dof, float.trivial_motions));
+    assert_eq!(redundant(&a), redundant(&float));
+}

@@ -53,6 +53,7 @@ mod project;
 mod qla;
 mod repr;
 pub mod sketch;
+mod square;
 mod turns;
 mod views;
 mod witness;

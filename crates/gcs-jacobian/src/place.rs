@@ -68,6 +68,11 @@
 //!   [`crate::polysolve`]), at a random point of its solutions, the folded special positions
 //!   ([`Placer::apart_pairs`]) excluded.
 //!
+//! - *The projection's structure* (modulo the prime only, when all of the above failed:
+//!   [`crate::square`], called from the witness search with the numerical projection): the
+//!   free coordinates are those the projection's rows leave free, drawn at random, and the
+//!   square system that determines the rest is solved block by block.
+//!
 //! None of this changes what a witness is: every choice is a random point of the solution set
 //! of the constraints imposed at that step, so the witness is a generic point of the
 //! constraints as before (a choice taken again keeps only choices with a root: about half of

@@ -76,23 +76,7 @@ pub(crate) fn project(
     start: &[f64],
     scale: f64,
 ) -> Option<Vec<f64>> {
-    // Tangency branches from the starting point.
-    let none = |_: EntityIdx| None;
-    let variants: Vec<usize> = system
-        .constraint_indices()
-        .map(|ci: ConstraintIdx| {
-            let c = system.constraint(ci);
-            let base = system.constraint_base_entities(ci);
-            let local = Local::new(system, layout, &base, start);
-            (0..laws::law(c.signature, 0, &local, &none, false).variants)
-                .map(|v| {
-                    let law = laws::law(c.signature, v, &local, &none, false);
-                    (law.rows.iter().map(|r| r.value.abs()).sum::<f64>(), v)
-                })
-                .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a })
-                .1
-        })
-        .collect();
+    let variants = variants_at(system, layout, start);
     let options = LmOptions {
         tolerance: 1e-12 * scale.max(1.0).powi(2),
         max_unknowns: MAX_UNKNOWNS,
@@ -104,4 +88,25 @@ pub(crate) fn project(
         &options,
     )?;
     outcome.converged.then_some(outcome.x)
+}
+
+/// Each constraint's variant (branch: internal or external tangency…) whose equations are
+/// nearest to holding at `x`: the branch the drawing shows.
+pub(crate) fn variants_at(system: &System, layout: &Layout, x: &[f64]) -> Vec<usize> {
+    let none = |_: EntityIdx| None;
+    system
+        .constraint_indices()
+        .map(|ci: ConstraintIdx| {
+            let c = system.constraint(ci);
+            let base = system.constraint_base_entities(ci);
+            let local = Local::new(system, layout, &base, x);
+            (0..laws::law(c.signature, 0, &local, &none, false).variants)
+                .map(|v| {
+                    let law = laws::law(c.signature, v, &local, &none, false);
+                    (law.rows.iter().map(|r| r.value.abs()).sum::<f64>(), v)
+                })
+                .fold((f64::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a })
+                .1
+        })
+        .collect()
 }

@@ -331,6 +331,53 @@ fn modular(
     Ok(held_back)
 }
 
+/// A modular witness from the numerical projection `approx` ([`crate::square`]): the
+/// construction's last resort, modulo the first witness prime, the best rank of a few rounds.
+fn from_projection(
+    system: &System,
+    layout: &Layout,
+    approx: &[f64],
+    options: &WitnessOptions,
+    sketch_rejected: &Option<Rejection>,
+    why: &NoWitness,
+) -> Result<Option<Witness>, JacobianError> {
+    let q = gcs_rank::WITNESS_PRIMES[0];
+    let found = gcs_rank::with_modulus(q, || -> Result<_, JacobianError> {
+        let mut best: Option<(Vec<u64>, Plan, usize)> = None;
+        let mut budget = 2 * place::ALGEBRA_WORK;
+        for round in 0..options.rounds.max(1) + 1 {
+            let seed = options.seed.wrapping_mul(0x2545_F491).wrapping_add(round as u64 + 1);
+            // (Rounds alternate the two splits: pivots last, then first, in column order.)
+            let last = round % 2 == 0;
+            let Some(coords) =
+                crate::square::place(system, layout, approx, seed, last, &mut budget)
+            else {
+                continue;
+            };
+            let x: Vec<ModQ> = coords.iter().map(crate::qla::Num::modular).collect();
+            // Fixed positions are read off the witness (see `place`).
+            let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
+            let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
+            let j = assemble(system, layout, &p, &x, &sketch);
+            let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
+            if best.as_ref().is_none_or(|b| r > b.2) {
+                best = Some((x.iter().map(|v| v.value()).collect(), p, r));
+            }
+        }
+        Ok(best)
+    })?;
+    Ok(found.map(|(x, plan, _)| Witness {
+        coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
+        source: WitnessSource::Modular,
+        plan,
+        genericity_tested: true,
+        sketch_rejected: sketch_rejected.clone(),
+        no_exact_witness: Some(why.clone()),
+        modulus: Some(q),
+        turns: Vec::new(),
+    }))
+}
+
 /// Whether the turns `[m, b, c]` a placement took at free choices (point `m` placed as `b`
 /// turned about `c`, a circle's centre or a point) are held by the constraints at the witness
 /// `x` of Jacobian `j` (of rank `rank`), to first order: the differential of each angle from
@@ -499,6 +546,13 @@ pub fn find_witness(
             let Some(x) = crate::project::project(system, layout, &start, scale) else {
                 return Err(JacobianError::NoWitness(msg));
             };
+            // Modulo the prime, a witness from the projection's structure (`crate::square`).
+            if options.modular
+                && let Some(w) =
+                    from_projection(system, layout, &x, options, &sketch_rejected, &msg)?
+            {
+                return Ok(w);
+            }
             // (Each residual against the size to its degree, as the projection measured it.)
             let size = scale.max(1.0);
             let sketch_f = |e: EntityIdx| crate::sketch::sketch_coords_in::<f64>(system, e);
