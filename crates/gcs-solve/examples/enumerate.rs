@@ -13,7 +13,9 @@
 //!   octahedron has 16 complex realizations with a face held).
 //!
 //! `met` counts the paths found at the same point as another at a checkpoint `t < 1` (a jump
-//! detected, the paths tracked again; `homotopy::Ends::met`).
+//! detected, the paths tracked again; `homotopy::Ends::met`), `unaccounted` the paths to
+//! infinity or to a singular end the endgame's cycles did not account for at first (tracked
+//! or looped again; `homotopy::Ends::unaccounted`).
 //! `seconds_nodes` is the solve with every node's candidates at the drawing's choices (one
 //! realization listed: `all: Some(1)`), `seconds_all` the solve listing up to 10,000.
 //! `cargo run --release -p gcs-solve --example enumerate -- laman 6 7 8 [--seeds K]`.
@@ -51,7 +53,7 @@ fn main() {
         ..AnalysisOptions::default()
     };
     println!(
-        "family size seed core_points nodes paths finite real undecided realizations seconds_nodes seconds_all nodes_per_second paths_per_second met"
+        "family size seed core_points nodes paths finite real undecided realizations seconds_nodes seconds_all nodes_per_second paths_per_second met unaccounted"
     );
     for &n in &sizes {
         for seed in 1..=seeds {
@@ -89,12 +91,12 @@ fn main() {
             let paths = sum(|c| c.paths);
             if counted.is_empty() {
                 println!(
-                    "{family} {n} {seed} {points} {} - - - - {listed} {seconds_nodes:.3} {seconds_all:.3} - - -",
+                    "{family} {n} {seed} {points} {} - - - - {listed} {seconds_nodes:.3} {seconds_all:.3} - - - -",
                     nodes.len()
                 );
             } else {
                 println!(
-                    "{family} {n} {seed} {points} {} {paths} {} {} {} {listed} {seconds_nodes:.3} {seconds_all:.3} {:.1} {:.0} {}",
+                    "{family} {n} {seed} {points} {} {paths} {} {} {} {listed} {seconds_nodes:.3} {seconds_all:.3} {:.1} {:.0} {} {}",
                     nodes.len(),
                     sum(|c| c.finite),
                     sum(|c| c.real),
@@ -102,6 +104,7 @@ fn main() {
                     nodes.len() as f64 / seconds_nodes,
                     paths as f64 / seconds_nodes,
                     sum(|c| c.met),
+                    sum(|c| c.unaccounted),
                 );
             }
         }

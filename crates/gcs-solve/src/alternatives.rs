@@ -48,6 +48,10 @@ pub struct PathCounts {
     /// Paths that met another path at a checkpoint `t < 1` (a jump detected) and were tracked
     /// again ([`homotopy::Ends::met`]); those still meeting are in `failed`.
     pub met: usize,
+    /// Paths to infinity or to a singular end the endgame's cycles did not account for at
+    /// first (a jump past the last checkpoint detected), then tracked again
+    /// ([`homotopy::Ends::unaccounted`]); those still unaccounted for are in `failed`.
+    pub unaccounted: usize,
 }
 
 /// Why a node's candidates may not be all its real solutions (a plan step with `complete`
@@ -796,6 +800,7 @@ fn solve_param(
         singular: ends.singular,
         failed: ends.failed,
         met: ends.met,
+        unaccounted: ends.unaccounted,
     };
     Ok((counts, found.into_iter().map(|f| f.1).collect()))
 }

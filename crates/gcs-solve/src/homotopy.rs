@@ -48,8 +48,16 @@
 //!   corrected by Newton at that `t` to the rounding, are one path twice (distinct paths do
 //!   not meet for `t < 1`). Both are tracked again like a collision's, and what still meets
 //!   counts as failed paths, all but one. No checkpoint beyond `t = 0.99`: there the paths
-//!   to one singular end or one point at infinity draw together, and a jump after it onto
-//!   such a path is still not detected.
+//!   to one singular end or one point at infinity draw together.
+//! - Past the last checkpoint, the ends at infinity and at singular solutions are accounted
+//!   for by the cycles of the Cauchy endgame's loops ([`account`]): one turn of the loop
+//!   around `|1 − t| = 10⁻²` from each such path's point at `t = 0.99` must close at the end
+//!   it was tracked to (cycle number 1) or come back at the point of another such path there
+//!   (the next of its cycle), each point reached once. A path that jumped past 0.99 onto a
+//!   path to infinity or to a singular end has a loop that closes at the nonsingular solution
+//!   it should have reached: it is tracked again from 0.99 with finer steps, and counts as
+//!   failed if its end still disagrees with its loop (as does a loop that comes back at no
+//!   path's point, or at one another loop came back at, once remade with more points).
 //!
 //! All of this is floating point: the counts are numerical results, reported as such.
 
@@ -99,6 +107,11 @@ pub struct Ends {
     /// tracking (a jump detected), then tracked again: diagnostic, no path of it is missing
     /// unless counted in `failed`.
     pub met: usize,
+    /// Paths to infinity or to a singular end that the cycles of the Cauchy endgame's loops
+    /// did not account for on their first tracking (a jump past the last checkpoint detected,
+    /// or a loop that did not come back at a path), then tracked or looped again: diagnostic,
+    /// no path of it is missing unless counted in `failed`.
+    pub unaccounted: usize,
 }
 
 impl Ends {
@@ -216,10 +229,17 @@ struct Tracking {
     /// on its first tracking (with `always`, also when tracked again), as if it had jumped to
     /// path `l` at once.
     divert: Option<(usize, usize, bool)>,
+    /// Whether the ends past the last checkpoint are accounted for by the endgame's cycles
+    /// ([`account`]).
+    account: bool,
+    /// A jump forced past the last checkpoint, for the tests: `(k, l, always)` tracks path
+    /// `k` to the last checkpoint, then on from where path `l` was there (with `always`, also
+    /// when tracked again).
+    late: Option<(usize, usize, bool)>,
 }
 
 impl Tracking {
-    const DEFAULT: Tracking = Tracking { compare: true, divert: None };
+    const DEFAULT: Tracking = Tracking { compare: true, divert: None, account: true, late: None };
 }
 
 impl Track {
@@ -383,21 +403,43 @@ impl Homotopy<'_> {
     /// singular ends slow down). The path stops at `1 − t = 1e-8` (what is left to a
     /// nonsingular end, Newton on the target does), where its step underflows, and where it
     /// is clearly going to infinity ([`Track::at_infinity`]'s test, with margins).
-    fn track(&self, mut z: Vec<C>, max_step: f64) -> Track {
-        let mut t = 0.0f64;
+    fn track(&self, z: Vec<C>, max_step: f64) -> Track {
+        self.track_from(z, Vec::new(), max_step, 0.5)
+    }
+
+    /// [`Homotopy::track`] from the last of the [`CHECKPOINTS`] (`marks`: the path's points
+    /// at all of them; `z` the last), its steps at most `fraction` of what is left of `1 − t`
+    /// (`track`'s: a half): the path tracked again past the last comparison, more finely.
+    fn resume(&self, marks: &[Vec<C>], fraction: f64) -> Option<Track> {
+        let z = marks.get(CHECKPOINTS.len() - 1)?.clone();
+        Some(self.track_from(z, marks.to_vec(), FIRST_STEP, fraction))
+    }
+
+    /// Tracks from `z` at the `t` of the last of `marks` (its checkpoints so far; `t = 0` when
+    /// there are none): see [`Homotopy::track`], with steps at most `fraction` of what is left
+    /// of `1 − t`.
+    fn track_from(
+        &self,
+        mut z: Vec<C>,
+        mut marks: Vec<Vec<C>>,
+        max_step: f64,
+        fraction: f64,
+    ) -> Track {
+        let mut t = marks.len().checked_sub(1).map_or(0.0, |c| CHECKPOINTS[c]);
         let mut h = max_step.min(0.02);
         let mut successes = 0;
-        let mut early: Option<(f64, f64)> = None;
-        let mut endgame: Option<(f64, Vec<C>)> = None;
-        let mut last_decade: Option<(f64, Vec<C>)> = None;
-        let mut marks: Vec<Vec<C>> = Vec::new();
         let ratio = |z: &[C]| z[0].norm() / norm(z);
+        // (Resumed at the last checkpoint, 0.99: the endgame starts there.)
+        let mut early: Option<(f64, f64)> =
+            (marks.len() == CHECKPOINTS.len()).then(|| (1.0 - t, ratio(&z)));
+        let mut endgame: Option<(f64, Vec<C>)> = early.map(|(left, _)| (left, z.clone()));
+        let mut last_decade: Option<(f64, Vec<C>)> = None;
         for _ in 0..2_000 {
             let left = 1.0 - t;
             if left <= 1e-8 {
                 break;
             }
-            let mut dt = h.min(0.5 * left);
+            let mut dt = h.min(fraction * left);
             // Onto the next checkpoint rather than past it (at exactly its `t`).
             let mark = CHECKPOINTS.get(marks.len()).filter(|&&c| t + dt >= c);
             if let Some(&c) = mark {
@@ -482,28 +524,44 @@ impl Homotopy<'_> {
     /// `t = 1` is the mean of the path over those turns, sampled at equally spaced angles
     /// (the trapezoidal rule, exponentially accurate on a periodic function). This finds the
     /// end of a path to a singular solution, where the tracker cannot go. `None` when the
-    /// path does not close.
-    fn cauchy(&self, z: &[C], radius: f64) -> Option<Vec<C>> {
-        const SAMPLES: usize = 64;
+    /// path does not close; else the end and where the first turn took the path (back at
+    /// `1 − t = radius`: its own point when `c` is 1, else the point of the next path of its
+    /// cycle).
+    fn cauchy(&self, z: &[C], radius: f64) -> Option<(Vec<C>, Vec<C>)> {
         let start = z.to_vec();
         let mut z = start.clone();
         let mut sum = vec![C::new(0.0, 0.0); z.len()];
-        let at = |theta: f64| C::new(1.0, 0.0) - C::new(0.0, theta).exp() * radius;
+        let mut first = None;
         for turn in 1..=MAX_WINDING {
-            for k in 0..SAMPLES {
-                for (s, v) in sum.iter_mut().zip(&z) {
-                    *s += v;
-                }
-                let from =
-                    std::f64::consts::TAU * ((turn - 1) * SAMPLES + k) as f64 / SAMPLES as f64;
-                z = self.arc(&z, from, std::f64::consts::TAU / SAMPLES as f64, &at)?;
+            let (to, part) = self.turn(&z, radius, SAMPLES)?;
+            for (s, v) in sum.iter_mut().zip(&part) {
+                *s += v;
             }
-            if same_within(&z, &start, 1e-6) {
+            z = to;
+            let first = first.get_or_insert_with(|| z.clone());
+            if closes(&z, &start) {
                 let count = (turn * SAMPLES) as f64;
-                return Some(sum.iter().map(|s| s / count).collect());
+                return Some((sum.iter().map(|s| s / count).collect(), first.clone()));
             }
         }
         None
+    }
+
+    /// One turn of the Cauchy endgame's loop from `z` at `1 − t = radius`, in `samples` equal
+    /// arcs: where it ends (at `1 − t = radius` again) and the sum of the path's points at the
+    /// start of each arc.
+    fn turn(&self, z: &[C], radius: f64, samples: usize) -> Option<(Vec<C>, Vec<C>)> {
+        let mut z = z.to_vec();
+        let mut sum = vec![C::new(0.0, 0.0); z.len()];
+        let at = |theta: f64| C::new(1.0, 0.0) - C::new(0.0, theta).exp() * radius;
+        for k in 0..samples {
+            for (s, v) in sum.iter_mut().zip(&z) {
+                *s += v;
+            }
+            let from = std::f64::consts::TAU * k as f64 / samples as f64;
+            z = self.arc(&z, from, std::f64::consts::TAU / samples as f64, &at)?;
+        }
+        Some((z, sum))
     }
 
     /// Tracks from `z` at angle `from` along the circle to `from + step`, in substeps that
@@ -554,6 +612,17 @@ impl Homotopy<'_> {
 /// The most turns the Cauchy endgame makes around a path's end (its cycle number).
 const MAX_WINDING: usize = 8;
 
+/// The points per turn of the Cauchy endgame.
+const SAMPLES: usize = 64;
+
+/// The points per turn of a loop that accounts for a path's end ([`account`]).
+const TURN_SAMPLES: usize = 16;
+
+/// Whether a turn of the Cauchy endgame's loop from `start` that came back at `z` closed.
+fn closes(z: &[C], start: &[C]) -> bool {
+    same_within(z, start, 1e-6)
+}
+
 /// Newton on the target from `x`: the solution and whether it is nonsingular there — Newton
 /// converges quadratically to a nonsingular solution, only linearly to a singular one, and the
 /// pivots of the Jacobian stay apart. Quadratic convergence shows within a dozen steps as a
@@ -591,6 +660,7 @@ fn refine(target: &Target<'_>, x: &[C]) -> Option<(Vec<C>, bool)> {
 }
 
 /// What a path ended at.
+#[derive(Clone, Debug)]
 enum End {
     Solution(Vec<C>),
     /// A finite solution where the target's Jacobian is singular (found by the endgame): a
@@ -600,26 +670,28 @@ enum End {
     Failed,
 }
 
-fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> End {
+/// What a path ended at, and, when the Cauchy endgame decided it, where the endgame's first
+/// turn took it.
+fn end_of(homotopy: &Homotopy<'_>, track: &Track) -> (End, Option<Vec<C>>) {
     let target = homotopy.target;
     if track.ratio <= 1e-10 {
-        return End::Infinity;
+        return (End::Infinity, None);
     }
     let end = &track.z;
     let x: Vec<C> = end[1..].iter().map(|v| v / end[0]).collect();
     match refine(target, &x) {
         // (Near the end of its path: Newton from the end of a path to infinity may reach
         // any solution.)
-        Some((y, true)) if same_within(&x, &y, 1e-4) => End::Solution(y),
-        Some((y, true)) if approaches(target, track, &y) => End::Solution(y),
+        Some((y, true)) if same_within(&x, &y, 1e-4) => (End::Solution(y), None),
+        Some((y, true)) if approaches(target, track, &y) => (End::Solution(y), None),
         // A path stopped short of the end whose `z₀` shrinks is taken to infinity; one tracked
         // to the end with `z₀` not negligible is at a finite point that Newton did not confirm
         // from there (a large or ill-conditioned solution, which the path approaches slowly —
         // as `z₀` shrinks towards its finite value — or a singular one): the endgame decides.
-        _ if !track.reached && track.at_infinity() => End::Infinity,
+        _ if !track.reached && track.at_infinity() => (End::Infinity, None),
         _ => match &track.endgame {
             Some((radius, z)) => endgame(homotopy, z, *radius),
-            None => End::Failed,
+            None => (End::Failed, None),
         },
     }
 }
@@ -646,13 +718,20 @@ fn approaches(target: &Target<'_>, track: &Track, y: &[C]) -> bool {
 }
 
 /// The end of a path the tracker could not decide, by the Cauchy endgame from where it was at
-/// `1 − t = radius` (then from a tenth of that, tracked there): at infinity when `z₀`
+/// `1 − t = radius` ([`classify`]; failed when the loop does not close), and where the
+/// loop's first turn took it.
+fn endgame(homotopy: &Homotopy<'_>, z: &[C], radius: f64) -> (End, Option<Vec<C>>) {
+    match homotopy.cauchy(z, radius) {
+        Some((e, first)) => (classify(homotopy.target, &e), Some(first)),
+        None => (End::Failed, None),
+    }
+}
+
+/// What the end `e` (on the chart) the Cauchy endgame found is: at infinity when `z₀`
 /// vanishes there, a nonsingular solution when Newton on the target converges quadratically
 /// from it, a singular one when the target vanishes there; failed otherwise.
-fn endgame(homotopy: &Homotopy<'_>, z: &[C], radius: f64) -> End {
-    let target = homotopy.target;
-    let Some(e) = homotopy.cauchy(z, radius) else { return End::Failed };
-    let size = norm(&e);
+fn classify(target: &Target<'_>, e: &[C]) -> End {
+    let size = norm(e);
     if e[0].norm() <= 1e-8 * size {
         return End::Infinity;
     }
@@ -814,16 +893,17 @@ fn start_system<'t>(target: &'t Target<'_>) -> (Option<&'t (Vec<bool>, Vec<[u32;
 /// random choices (`γ`, the chart) from `seed`. `None` when the system has more than
 /// `max_paths` (or [`MAX_PATHS`]) paths.
 pub fn solve(target: &Target<'_>, seed: u64, max_paths: usize) -> Option<Ends> {
-    solve_tracking(target, seed, max_paths, Tracking::DEFAULT)
+    solve_tracking(target, seed, max_paths, Tracking::DEFAULT).map(|(ends, _)| ends)
 }
 
-/// [`solve`] with the paths tracked as `tracking` says.
+/// [`solve`] with the paths tracked as `tracking` says; with each path's cycle number where
+/// [`account`] found it.
 fn solve_tracking(
     target: &Target<'_>,
     seed: u64,
     max_paths: usize,
     tracking: Tracking,
-) -> Option<Ends> {
+) -> Option<(Ends, Vec<Option<usize>>)> {
     let n = target.n;
     let mut rng = SplitMix64::new(seed);
     let mut unit = || {
@@ -872,45 +952,58 @@ fn solve_tracking(
             z.iter().map(|v| v / s).collect()
         })
         .collect();
-    let run = |k: usize, step: f64| -> (End, Vec<Vec<C>>) {
+    // (The test's jump after the last checkpoint: path `k` tracked to it, then on from where
+    // path `l` was there — as if it had jumped onto `l` right after the comparison.)
+    let late = |k: usize, again: bool| match tracking.late {
+        Some((from, to, always)) if k == from && (always || !again) => Some(to),
+        _ => None,
+    };
+    let splice = |own: Track, other: Track| -> Track {
+        if own.marks.len() == CHECKPOINTS.len() && other.marks.len() == CHECKPOINTS.len() {
+            Track { marks: own.marks, early: own.early, endgame: own.endgame, ..other }
+        } else {
+            own
+        }
+    };
+    let finish = |track: Track| -> Run {
+        let (end, turn) = end_of(&homotopy, &track);
+        Run { end, marks: track.marks, turn }
+    };
+    let run = |k: usize, step: f64| -> Run {
         let z = match tracking.divert {
             Some((from, to, always)) if k == from && (always || step == FIRST_STEP) => &starts[to],
             _ => &starts[k],
         };
-        let track = homotopy.track(z.clone(), step);
-        (end_of(&homotopy, &track), track.marks)
+        let mut track = homotopy.track(z.clone(), step);
+        if let Some(l) = late(k, step != FIRST_STEP) {
+            track = splice(track, homotopy.track(starts[l].clone(), step));
+        }
+        finish(track)
     };
-    // The paths on the machine's cores (none spawned where threads do not exist), each
-    // thread a contiguous share; then merged in order, so that the result is the same on
-    // any number of cores.
-    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get).min(8);
-    let share = starts.len().div_ceil(threads.max(1)).max(1);
-    let first: Vec<(End, Vec<Vec<C>>)> = if threads <= 1 || starts.len() < 8 {
-        (0..starts.len()).map(|k| run(k, FIRST_STEP)).collect()
-    } else {
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = (0..starts.len())
-                .step_by(share)
-                .map(|from| {
-                    let run = &run;
-                    let chunk = from..(from + share).min(starts.len());
-                    scope.spawn(move || chunk.map(|k| run(k, FIRST_STEP)).collect::<Vec<_>>())
-                })
-                .collect();
-            handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
-        })
+    // A path tracked again from the last checkpoint, its steps at most `fraction` of what is
+    // left of `1 − t`.
+    let resume = |k: usize, marks: &[Vec<C>], fraction: f64| -> Option<Run> {
+        let mut track = homotopy.resume(marks, fraction)?;
+        if let Some(l) = late(k, true) {
+            let other = homotopy.track(starts[l].clone(), FIRST_STEP);
+            track = splice(track, homotopy.resume(&other.marks, fraction)?);
+        }
+        Some(finish(track))
     };
-    if first.len() != starts.len() {
-        // (A thread that failed: nothing is claimed.)
-        return None;
+    let first = parallel(starts.len(), &|k| run(k, FIRST_STEP))?;
+    let (mut results, mut marks, mut turns) = (Vec::new(), Vec::new(), Vec::new());
+    for r in first {
+        results.push(r.end);
+        marks.push(r.marks);
+        turns.push(r.turn);
     }
-    let (mut results, mut marks): (Vec<End>, Vec<Vec<Vec<C>>>) = first.into_iter().unzip();
     // The largest step each path was last tracked with.
     let mut steps = vec![FIRST_STEP; starts.len()];
     // A path the tracker lost is tracked again with smaller steps.
     for k in 0..starts.len() {
         if matches!(results[k], End::Failed) && steps[k] > FIRST_STEP / 10.0 {
-            (results[k], marks[k]) = run(k, FIRST_STEP / 10.0);
+            let r = run(k, FIRST_STEP / 10.0);
+            (results[k], marks[k], turns[k]) = (r.end, r.marks, r.turn);
             steps[k] = FIRST_STEP / 10.0;
         }
     }
@@ -943,7 +1036,8 @@ fn solve_tracking(
             if steps[k] <= step {
                 continue;
             }
-            (results[k], marks[k]) = run(k, step);
+            let r = run(k, step);
+            (results[k], marks[k], turns[k]) = (r.end, r.marks, r.turn);
             steps[k] = step;
         }
         met = compare(&marks);
@@ -952,6 +1046,79 @@ fn solve_tracking(
     for (k, other) in met.iter().enumerate() {
         if other.is_some_and(|l| l < k) {
             results[k] = End::Failed;
+        }
+    }
+    // Past the last checkpoint: the ends accounted for by the cycles of the endgame's loops
+    // (`account`). A path whose own loop says it ends elsewhere than it was tracked to (it
+    // jumped past the last comparison) is tracked again from there with steps a tenth, then
+    // a fiftieth of what is left of `1 − t`; a path whose loop comes back at no path's point,
+    // or at one another loop also comes back at, has its loop's turn made again with four
+    // times the points. What is still not accounted for then counts as failed.
+    let mut cycles = vec![None; starts.len()];
+    if tracking.account {
+        let radius = 1.0 - CHECKPOINTS[CHECKPOINTS.len() - 1];
+        let mut turned: Vec<Option<Turned>> = (0..starts.len()).map(|_| None).collect();
+        // (Fewer points than the endgame's: a turn only finds where the path comes back, and
+        // the end where it closes, made again with the endgame's points when the classification
+        // names none; the arcs halve where they must.)
+        let mut samples = vec![TURN_SAMPLES; starts.len()];
+        let mut rounds = [0.1, 0.02].into_iter();
+        for round in 0.. {
+            // The turns not yet made: from the endgame's first one where it ran, else made here
+            // (on the cores).
+            let wanted: Vec<usize> = (0..starts.len())
+                .filter(|&k| turned[k].is_none() && candidate(&results[k], &marks[k]))
+                .collect();
+            let made = parallel(wanted.len(), &|i| {
+                let k = wanted[i];
+                let mark = &marks[k][CHECKPOINTS.len() - 1];
+                if let Some(to) = turns[k].as_ref().filter(|_| samples[k] == TURN_SAMPLES) {
+                    // (Where the endgame closed after one turn, its end is the path's.)
+                    return Turned::of(to.clone(), mark, |_| results[k].clone());
+                }
+                let mut made = samples[k];
+                loop {
+                    let Some((to, sum)) = homotopy.turn(mark, radius, made) else {
+                        return Turned::Lost;
+                    };
+                    let turned = Turned::of(to, mark, |_| {
+                        let e: Vec<C> = sum.iter().map(|v| v / made as f64).collect();
+                        classify(target, &e)
+                    });
+                    if !matches!(turned, Turned::Closed(End::Failed)) || made >= SAMPLES {
+                        return turned;
+                    }
+                    made = SAMPLES;
+                }
+            })?;
+            for (k, t) in wanted.into_iter().zip(made) {
+                turned[k] = Some(t);
+            }
+            let accounting =
+                account(&results, &marks, &turned, &|z| homotopy.polish(z, 1.0 - radius));
+            cycles = accounting.cycles;
+            if round == 0 {
+                ends.unaccounted = accounting.wrong.len() + accounting.unverified.len();
+            }
+            if accounting.wrong.is_empty() && accounting.unverified.is_empty() {
+                break;
+            }
+            let Some(fraction) = rounds.next() else {
+                for k in accounting.wrong.into_iter().chain(accounting.unverified) {
+                    results[k] = End::Failed;
+                }
+                break;
+            };
+            for &k in &accounting.wrong {
+                let r =
+                    resume(k, &marks[k], fraction).map_or((End::Failed, None), |r| (r.end, r.turn));
+                (results[k], turns[k]) = r;
+                // (The turn from its point is the same: kept.)
+            }
+            for &k in &accounting.unverified {
+                samples[k] *= 4;
+                turned[k] = None;
+            }
         }
     }
     for result in results {
@@ -964,7 +1131,209 @@ fn solve_tracking(
             End::Solution(_) | End::Failed => ends.failed += 1,
         }
     }
-    Some(ends)
+    Some((ends, cycles))
+}
+
+/// A path tracked: its end, its points at the [`CHECKPOINTS`] it reached, and, when the
+/// Cauchy endgame decided its end, where the endgame's first turn took it.
+struct Run {
+    end: End,
+    marks: Vec<Vec<C>>,
+    turn: Option<Vec<C>>,
+}
+
+/// `f` on `0..count`, on the machine's cores (none spawned where threads do not exist, nor
+/// for fewer than 8 items), each thread a contiguous share; merged in order, so that the
+/// result is the same on any number of cores. `None` when a thread failed.
+fn parallel<T: Send>(count: usize, f: &(dyn Fn(usize) -> T + Sync)) -> Option<Vec<T>> {
+    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get).min(8);
+    let share = count.div_ceil(threads.max(1)).max(1);
+    let all: Vec<T> = if threads <= 1 || count < 8 {
+        (0..count).map(f).collect()
+    } else {
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = (0..count)
+                .step_by(share)
+                .map(|from| {
+                    let chunk = from..(from + share).min(count);
+                    scope.spawn(move || chunk.map(f).collect::<Vec<_>>())
+                })
+                .collect();
+            handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect()
+        })
+    };
+    (all.len() == count).then_some(all)
+}
+
+/// Whether a path's end is to be accounted for by the endgame's cycles: it ended at
+/// infinity or at a singular solution, and was compared at every checkpoint (its point at the
+/// last is where its loop starts).
+fn candidate(end: &End, marks: &[Vec<C>]) -> bool {
+    matches!(end, End::Infinity | End::Singular) && marks.len() == CHECKPOINTS.len()
+}
+
+/// One turn of the endgame's loop from a path's point at the last checkpoint.
+#[derive(Clone, Debug)]
+enum Turned {
+    /// Back at the start: cycle number 1, and the loop's end (the mean of the turn).
+    Closed(End),
+    /// Elsewhere (cycle number at least 2): at the next path of its cycle, if that is where
+    /// it is.
+    At(Vec<C>),
+    /// The loop could not be tracked.
+    Lost,
+}
+
+impl Turned {
+    fn of(to: Vec<C>, start: &[C], end: impl FnOnce(&[C]) -> End) -> Turned {
+        if closes(&to, start) { Turned::Closed(end(&to)) } else { Turned::At(to) }
+    }
+}
+
+/// What the cycles of the endgame's loops say of the paths' ends.
+struct Accounting {
+    /// Each path's cycle number, where its turns form a cycle of candidates.
+    cycles: Vec<Option<usize>>,
+    /// Paths whose loop says they end elsewhere than they were tracked to: a path to
+    /// infinity or a singular end whose loop closes after one turn at a nonsingular solution
+    /// (it jumped after the last checkpoint).
+    wrong: Vec<usize>,
+    /// Paths whose loop cannot be accounted for: lost, back at no path's point, or at a point
+    /// another path's loop also came back at.
+    unverified: Vec<usize>,
+}
+
+/// Accounts for the ends of the paths to infinity and to singular solutions by the cycles of
+/// the Cauchy endgame's loops (Morgan, Sommese and Wampler's cycle numbers): a path whose end
+/// has cycle number `c` is one of `c` paths that one loop around `t = 1` permutes
+/// cyclically, all ending at that end. So one turn of the loop from each such path's point at
+/// the last checkpoint (`turned[k]`) either closes — `c = 1`, and the turn's mean is the end,
+/// which must not be a nonsingular solution, since the path was tracked elsewhere — or comes back at another path's point
+/// there, each path's point reached from exactly one (a loop around the circle permutes the
+/// paths' points on it, whatever is inside). A path that jumped after the last checkpoint
+/// onto a path to infinity or to a singular end fails this: its own loop closes at the
+/// nonsingular solution it should have reached. (A turn back at the point of a path tracked
+/// to a nonsingular solution is no contradiction: a large or ill-conditioned solution has a
+/// branch point of the homotopy within the circle, `|1 − t| < 10⁻²`, and its path and a path
+/// to infinity are swapped by the loop — `a_large_ill_conditioned_solution_is_found`; were
+/// it a path that jumped onto a solution's, the two would collide there. Such a cycle is left
+/// open.) The Cauchy endgame's assumption holds here too: a closing turn's mean is the end
+/// when no branch point but `t = 1` is within the circle.
+/// `polish` corrects a point at the last checkpoint's `t` to the rounding (the points are
+/// compared as at the checkpoints: [`NEAR`], then [`SAME_POINT`]).
+fn account(
+    results: &[End],
+    marks: &[Vec<Vec<C>>],
+    turned: &[Option<Turned>],
+    polish: &dyn Fn(&[C]) -> Vec<C>,
+) -> Accounting {
+    let last = CHECKPOINTS.len() - 1;
+    let n = results.len();
+    let index = Index::new(marks.iter().map(|m| m.get(last)).collect());
+    let mut next: Vec<Option<usize>> = vec![None; n];
+    let mut wrong = Vec::new();
+    let mut unverified = Vec::new();
+    let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for k in (0..n).filter(|&k| candidate(&results[k], &marks[k])) {
+        match &turned[k] {
+            // (Only a nonsingular solution contradicts: a closing turn's mean of a path to
+            // infinity whose `z₀` is not yet negligible there is no end the classification
+            // names, and a path to infinity or a singular end hides no isolated solution.)
+            Some(Turned::Closed(End::Solution(_))) => wrong.push(k),
+            Some(Turned::Closed(_)) => next[k] = Some(k),
+            Some(Turned::At(to)) => match index.find(to, polish) {
+                Some(q) if q != k => {
+                    next[k] = Some(q);
+                    into[q].push(k);
+                }
+                _ => unverified.push(k),
+            },
+            Some(Turned::Lost) | None => unverified.push(k),
+        }
+    }
+    for from in &into {
+        if from.len() > 1 {
+            unverified.extend(from);
+        }
+    }
+    wrong.sort_unstable();
+    wrong.dedup();
+    unverified.sort_unstable();
+    unverified.dedup();
+    unverified.retain(|k| wrong.binary_search(k).is_err());
+    // The cycles: from each path, along the turns, back to it.
+    let cycles = (0..n)
+        .map(|k| {
+            let mut at = next[k]?;
+            let mut length = 1;
+            while at != k {
+                at = next[at]?;
+                length += 1;
+                if length > n {
+                    return None;
+                }
+            }
+            Some(length)
+        })
+        .collect();
+    Accounting { cycles, wrong, unverified }
+}
+
+/// The paths' points at one checkpoint, sorted by a fixed real linear form so that the
+/// points near a given one are found among neighbours: `log P` and the points within the
+/// window.
+struct Index<'a> {
+    points: Vec<Option<&'a Vec<C>>>,
+    sorted: Vec<(f64, usize)>,
+    weights: Vec<C>,
+    window: f64,
+}
+
+impl<'a> Index<'a> {
+    fn new(points: Vec<Option<&'a Vec<C>>>) -> Index<'a> {
+        let width = points.iter().flatten().map(|z| z.len()).max().unwrap_or(0);
+        let weights = key_weights(width);
+        let mut sorted: Vec<(f64, usize)> = points
+            .iter()
+            .enumerate()
+            .filter_map(|(k, z)| Some((key(z.as_ref()?, &weights), k)))
+            .collect();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let largest = points.iter().flatten().map(|z| norm(z)).fold(0.0f64, f64::max);
+        let window = (width as f64).sqrt() * NEAR * (1.0 + largest);
+        Index { points, sorted, weights, window }
+    }
+
+    /// The first path whose point is `z`'s: within [`NEAR`], and within [`SAME_POINT`] once
+    /// both are corrected by `polish`.
+    fn find(&self, z: &[C], polish: &dyn Fn(&[C]) -> Vec<C>) -> Option<usize> {
+        let k = key(z, &self.weights);
+        let from = self.sorted.partition_point(|&(v, _)| v < k - self.window);
+        let polished = polish(z);
+        self.sorted[from..]
+            .iter()
+            .take_while(|&&(v, _)| v <= k + self.window)
+            .filter_map(|&(_, l)| Some((l, self.points[l]?)))
+            .filter(|(_, p)| same_within(z, p, NEAR))
+            .find(|(_, p)| same_within(&polished, &polish(p), SAME_POINT))
+            .map(|(l, _)| l)
+    }
+}
+
+/// A fixed real linear form's weights on points of `width` coordinates: distinct
+/// irrational-looking weights, `|w| ≤ √width`.
+fn key_weights(width: usize) -> Vec<C> {
+    (0..width)
+        .map(|j| {
+            let a = 0.618_033_988_749_895 * (j + 1) as f64;
+            C::new((a * 7.0).sin(), (a * 11.0).cos()) * std::f64::consts::FRAC_1_SQRT_2
+        })
+        .collect()
+}
+
+/// The real linear form of a point.
+fn key(z: &[C], weights: &[C]) -> f64 {
+    z.iter().zip(weights).map(|(a, w)| a * w).sum::<C>().re
 }
 
 /// For each path, the first (lowest) other path it is at the same point as at some
@@ -976,23 +1345,13 @@ fn solve_tracking(
 fn meetings(marks: &[Vec<Vec<C>>], polish: &dyn Fn(&[C], f64) -> Vec<C>) -> Vec<Option<usize>> {
     let mut met: Vec<Option<usize>> = vec![None; marks.len()];
     let width = marks.iter().flatten().map(Vec::len).max().unwrap_or(0);
-    // A fixed form with distinct irrational-looking weights, `|w| ≤ √width`.
-    let weights: Vec<C> = (0..width)
-        .map(|j| {
-            let a = 0.618_033_988_749_895 * (j + 1) as f64;
-            C::new((a * 7.0).sin(), (a * 11.0).cos()) * std::f64::consts::FRAC_1_SQRT_2
-        })
-        .collect();
+    let weights = key_weights(width);
     let reach = (width as f64).sqrt();
     for c in 0..CHECKPOINTS.len() {
         let mut at: Vec<(f64, usize)> = marks
             .iter()
             .enumerate()
-            .filter_map(|(k, m)| {
-                let z = m.get(c)?;
-                let key: C = z.iter().zip(&weights).map(|(a, w)| a * w).sum();
-                Some((key.re, k))
-            })
+            .filter_map(|(k, m)| Some((key(m.get(c)?, &weights), k)))
             .collect();
         if at.len() < 2 {
             continue;
@@ -1201,8 +1560,9 @@ mod tests {
         assert_eq!((truth.paths, truth.solutions.len(), truth.at_infinity), (8, 5, 3), "{truth:?}");
         assert!(truth.complete() && truth.met == 0, "{truth:?}");
         let with = |divert, compare| {
-            solve_tracking(&t, 7, MAX_PATHS, Tracking { divert, compare, ..Tracking::DEFAULT })
-                .unwrap()
+            let account = compare;
+            let tracking = Tracking { divert, compare, account, ..Tracking::DEFAULT };
+            solve_tracking(&t, 7, MAX_PATHS, tracking).unwrap().0
         };
         let mut silent = 0;
         for k in 0..8 {
@@ -1222,6 +1582,119 @@ mod tests {
             }
         }
         // (A path to a solution onto each of the 3 paths to infinity.)
+        assert_eq!(silent, 5 * 3);
+    }
+
+    /// The cycles of the endgame's loops, on ends whose cycle numbers are known. `x³ = 0`:
+    /// the three paths end at 0 as `x ≈ ω·((1 − t)γ)^{1/3}`, one cycle of 3 (a loop around
+    /// `t = 1` takes each to the next). `x² = 0, y = x + 1`: one cycle of 2. `y = 0,
+    /// y + x² = 0`, a double root at 0 whose two paths are analytic in `t`: near `t = 1` the
+    /// homotopy is `y = λ(x − 1)`, `y + x² = λ(y² − 1)` with `λ ≈ −(1 − t)γ`, so `x² + λx −
+    /// λy² = 0` with `y ≈ −λ`: `x ≈ −λ` and `x ≈ λ²` — two cycles of 1 at one singular end.
+    #[test]
+    fn the_endgame_cycles_account_for_singular_ends() {
+        let eval = |x: &[C]| (vec![x[0].powi(3)], vec![x[0].powi(2) * 3.0]);
+        let t = Target { n: 1, degrees: vec![3], eval: &eval, groups: None };
+        let (ends, cycles) = solve_tracking(&t, 3, MAX_PATHS, Tracking::DEFAULT).unwrap();
+        assert_eq!((ends.singular, ends.failed, ends.unaccounted), (3, 0, 0), "{ends:?}");
+        assert_eq!(cycles, vec![Some(3); 3]);
+        let eval = |x: &[C]| {
+            (vec![x[0] * x[0], x[1] - x[0] - c(1.0)], vec![x[0] * 2.0, c(0.0), -c(1.0), c(1.0)])
+        };
+        let t = Target { n: 2, degrees: vec![2, 1], eval: &eval, groups: None };
+        let (ends, cycles) = solve_tracking(&t, 6, MAX_PATHS, Tracking::DEFAULT).unwrap();
+        assert_eq!((ends.singular, ends.failed, ends.unaccounted), (2, 0, 0), "{ends:?}");
+        assert_eq!(cycles, vec![Some(2); 2]);
+        let eval =
+            |x: &[C]| (vec![x[1], x[1] + x[0] * x[0]], vec![c(0.0), c(1.0), x[0] * 2.0, c(1.0)]);
+        let t = Target { n: 2, degrees: vec![1, 2], eval: &eval, groups: None };
+        for seed in [1, 2, 5] {
+            let (ends, cycles) = solve_tracking(&t, seed, MAX_PATHS, Tracking::DEFAULT).unwrap();
+            assert_eq!((ends.singular, ends.failed, ends.unaccounted), (2, 0, 0), "{ends:?}");
+            assert_eq!(cycles, vec![Some(1); 2]);
+        }
+    }
+
+    /// The accounting's rules on turns given: a turn that closes at a nonsingular solution is
+    /// a wrong end (one that closes at no end the classification names is no contradiction); two turns back at one path's point, a lost turn and one back
+    /// at no path's point are unverified.
+    #[test]
+    fn the_accounting_names_what_the_cycles_contradict() {
+        let point = |v: f64| vec![c(1.0), c(v)];
+        let marks: Vec<Vec<Vec<C>>> =
+            (0..6).map(|k| vec![point(k as f64); CHECKPOINTS.len()]).collect();
+        let polish = |z: &[C]| z.to_vec();
+        let at = |k: usize| Some(Turned::At(point(k as f64)));
+        let solution = End::Solution(vec![c(0.0)]);
+        let results =
+            [End::Infinity, End::Infinity, End::Singular, End::Infinity, End::Infinity, solution];
+        // 0 → 1 → 0 (a cycle of 2), 2 closed, 3 closes at a solution, 4 → 5 (tracked to a
+        // solution: left open).
+        let turned = [
+            at(1),
+            at(0),
+            Some(Turned::Closed(End::Failed)),
+            Some(Turned::Closed(End::Solution(vec![c(0.0)]))),
+            at(5),
+            None,
+        ];
+        let a = account(&results, &marks, &turned, &polish);
+        assert_eq!(a.cycles, vec![Some(2), Some(2), Some(1), None, None, None]);
+        assert_eq!((a.wrong, a.unverified), (vec![3], vec![]));
+        // 0 and 1 both back at 2's point; 3 lost; 4 back at no path's point.
+        let results = [
+            End::Infinity,
+            End::Infinity,
+            End::Infinity,
+            End::Infinity,
+            End::Infinity,
+            End::Failed,
+        ];
+        let far = Some(Turned::At(point(9.5)));
+        let turned = [at(2), at(2), at(0), Some(Turned::Lost), far, None];
+        let a = account(&results, &marks, &turned, &polish);
+        assert_eq!((a.wrong, a.unverified), (vec![], vec![0, 1, 3, 4]));
+    }
+
+    /// A path that jumps past the last checkpoint onto a path going to infinity: the
+    /// checkpoints cannot see it (one solution silently missing), the endgame's cycles can —
+    /// the path's own loop from its point at the last checkpoint closes at the solution it
+    /// should have reached. The jump is forced (path `k` tracked to `t = 0.99`, then on from
+    /// path `l`'s point there) on the three square-free quadrics of the test above: with the
+    /// accounting, the path is tracked again from there — all 5 found when the jump does not
+    /// recur, `complete` false when it does.
+    #[test]
+    fn a_jump_past_the_last_checkpoint_is_detected() {
+        let coefficients = squarefree_quadrics(3, 1);
+        let eval = |x: &[C]| eval_squarefree(&coefficients, x);
+        let t = Target { n: 3, degrees: vec![2; 3], eval: &eval, groups: None };
+        let truth = solve(&t, 7, MAX_PATHS).unwrap();
+        assert_eq!((truth.solutions.len(), truth.at_infinity), (5, 3), "{truth:?}");
+        assert!(truth.complete() && truth.unaccounted == 0, "{truth:?}");
+        let with = |late, account| {
+            let tracking = Tracking { late, account, ..Tracking::DEFAULT };
+            solve_tracking(&t, 7, MAX_PATHS, tracking).unwrap().0
+        };
+        let mut silent = 0;
+        for k in 0..8 {
+            for l in (0..8).filter(|&l| l != k) {
+                let blind = with(Some((k, l, true)), false);
+                if !(blind.complete() && blind.solutions.len() == 4) {
+                    continue;
+                }
+                silent += 1;
+                assert_eq!(blind.met, 0, "{blind:?}");
+                let once = with(Some((k, l, false)), true);
+                assert_eq!(
+                    (once.solutions.len(), once.failed, once.unaccounted),
+                    (5, 0, 1),
+                    "{k} {l}: {once:?}"
+                );
+                let always = with(Some((k, l, true)), true);
+                assert_eq!((always.solutions.len(), always.failed), (4, 1), "{k} {l}: {always:?}");
+                assert!(!always.complete());
+            }
+        }
         assert_eq!(silent, 5 * 3);
     }
 
