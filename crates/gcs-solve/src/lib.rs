@@ -80,6 +80,17 @@ const STALL: usize = 20;
 /// is left as it was (the corpus' reports unchanged to the bit).
 const ACCELERATE_ABOVE: usize = 400;
 
+/// The fraction of the solve's tolerance ([`SolveOptions::tolerance`]) that the
+/// Levenberg–Marquardt runs aim at on the system itself: the run straight from the drawing and
+/// the homotopy's last step.
+const FINAL_FRACTION: f64 = 1e-5;
+
+/// The fraction of the solve's tolerance at which a step of the homotopy short of the system
+/// counts as converged; a run straight from the drawing that stops within it, short of
+/// [`FINAL_FRACTION`], has reached the rounding floor of its core and is taken (see
+/// [`Problem::direct`]).
+const STEP_FRACTION: f64 = 1e-3;
+
 /// Options of [`solve`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveOptions {
@@ -488,7 +499,7 @@ impl<'s> Problem<'s> {
             let last = target == 1.0;
             self.t.set(target);
             let lm = LmOptions {
-                tolerance: options.tolerance * if last { 1e-5 } else { 1e-3 },
+                tolerance: options.tolerance * if last { FINAL_FRACTION } else { STEP_FRACTION },
                 max_iterations: if last && dt < 1.0 {
                     options.max_iterations
                 } else {
@@ -522,16 +533,24 @@ impl<'s> Problem<'s> {
 
     /// Levenberg–Marquardt straight at the system from `x`, before any homotopy, with
     /// Nielsen's damping update and sparse steps ([`Damping::Nielsen`], stopped after
-    /// [`STALL`] steps without `|r|²` halving): `Some(steps)` with `x` solved when it converges and turns no triangle of
-    /// distances among the problem's points against their turn at `x`; `None` with `x`
-    /// untouched otherwise (the homotopy then starts from `x`).
+    /// [`STALL`] steps without `|r|²` halving): `Some(steps)` with `x` solved when it converges
+    /// (within [`FINAL_FRACTION`] of the tolerance, or, where it stops short of that, within
+    /// [`STEP_FRACTION`] of it) and turns no triangle of distances among the problem's points
+    /// against their turn at `x`; `None` with `x` untouched otherwise (the homotopy then starts
+    /// from `x`).
+    ///
+    /// A run that stops between the two has met the rounding floor of an ill-conditioned core
+    /// (`|r|²` no longer halves: 1.5e-14 of the tolerance's unit on a 49-unknown core of the
+    /// Onshape sample, 2.4e-13 on an 808-unknown one): the homotopy, aiming at the same floor,
+    /// spent hundreds of steps to end at it again, or failed (BENCHMARKS.md, "nineteenth
+    /// session").
     fn direct(&self, x: &mut [f64], options: &SolveOptions) -> Option<usize> {
         let y = self.gather(x);
         let outcome = levenberg_marquardt(
             self,
             &y,
             &LmOptions {
-                tolerance: options.tolerance * 1e-5,
+                tolerance: options.tolerance * FINAL_FRACTION,
                 max_iterations: options.max_iterations,
                 max_unknowns: usize::MAX,
                 sparse_above: 0,
@@ -540,7 +559,9 @@ impl<'s> Problem<'s> {
                 ..LmOptions::default()
             },
         )?;
-        if !outcome.converged {
+        let floor = outcome.max_residual <= options.tolerance * STEP_FRACTION
+            && outcome.x.iter().all(|v| v.is_finite());
+        if !outcome.converged && !floor {
             return None;
         }
         let mut solved = x.to_vec();
