@@ -477,20 +477,91 @@ impl Solver<'_> {
                 None => return Vec::new(),
             }
         }
-        let rng = &mut self.rng;
-        let found = polysolve::points(&equations, k, 16, &mut || rng.next_u64(), budget);
-        let Ok((ts, _)) = found else { return Vec::new() };
-        ts.into_iter()
-            .map(|t| {
-                let mut x = base.clone();
-                for (tj, v) in t.iter().zip(&kernel) {
-                    for (xi, vi) in x.iter_mut().zip(v) {
-                        *xi = xi.add(&tj.mul(vi));
+        // Points kept apart that a solution shows together are kept apart in the next round
+        // (`z · Π ℓ = 1`, `ℓ` a random linear form in their difference): folded
+        // constructions form parts of the solutions as large as the proper one, or larger, and
+        // a random point of the solutions lands on them.
+        let layout = self.sq.layout;
+        let column = |c: usize| cols.iter().position(|b| *b == c);
+        let known = |e: EntityIdx, assigned: &[bool]| {
+            layout.columns(e).all(|c| assigned[c] || column(c).is_some())
+        };
+        let pairs: Vec<(EntityIdx, EntityIdx)> = self
+            .apart
+            .iter()
+            .copied()
+            .filter(|(a, b)| {
+                let touched = |e: EntityIdx| layout.columns(e).any(|c| column(c).is_some());
+                (touched(*a) || touched(*b))
+                    && known(*a, &self.assigned)
+                    && known(*b, &self.assigned)
+            })
+            .collect();
+        let at = |x: &[ModQ], value: &[ModQ], c: usize| column(c).map_or(value[c], |i| x[i]);
+        let mut saturated: Vec<usize> = Vec::new();
+        for _round in 0..4 {
+            let mut system = equations.clone();
+            let mut nv = k;
+            if !saturated.is_empty() {
+                if k >= polysolve::MAX_VARS {
+                    return Vec::new();
+                }
+                let mut product = P::one();
+                for &i in &saturated {
+                    let (a, b) = pairs[i];
+                    let mut l = P::zero();
+                    for (ca, cb) in layout.columns(a).zip(layout.columns(b)) {
+                        let r = P::constant(ModQ::residue(self.rng.next_u64()));
+                        l = l.add(&coords[ca].sub(&coords[cb]).mul(&r));
+                    }
+                    product = product.mul(&l);
+                }
+                system.push(P::var(k).mul(&product).sub(&P::one()));
+                nv = k + 1;
+            }
+            let rng = &mut self.rng;
+            let found = polysolve::points(&system, nv, 16, &mut || rng.next_u64(), budget);
+            let Ok((ts, _)) = found else { return Vec::new() };
+            let points: Vec<Vec<ModQ>> = ts
+                .into_iter()
+                .map(|t| {
+                    let mut x = base.clone();
+                    for (tj, v) in t.iter().take(k).zip(&kernel) {
+                        for (xi, vi) in x.iter_mut().zip(v) {
+                            *xi = xi.add(&tj.mul(vi));
+                        }
+                    }
+                    x
+                })
+                .collect();
+            let mut proper = Vec::new();
+            let mut more = false;
+            for x in points {
+                let together: Vec<usize> = (0..pairs.len())
+                    .filter(|i| {
+                        let (a, b) = pairs[*i];
+                        layout
+                            .columns(a)
+                            .zip(layout.columns(b))
+                            .all(|(ca, cb)| at(&x, &self.value, ca) == at(&x, &self.value, cb))
+                    })
+                    .collect();
+                if together.is_empty() {
+                    proper.push(x);
+                }
+                for i in together {
+                    if !saturated.contains(&i) {
+                        saturated.push(i);
+                        more = true;
                     }
                 }
-                x
-            })
-            .collect()
+            }
+            // (A product of many forms makes the system too large to solve.)
+            if !proper.is_empty() || !more || saturated.len() > 8 {
+                return proper;
+            }
+        }
+        Vec::new()
     }
 
     /// The values and the Jacobian (dense, in the block's columns) of the block's rows at the
