@@ -289,12 +289,8 @@ fn modular(
                     }
                 };
                 let x: Vec<ModQ> = coords.iter().map(crate::qla::Num::modular).collect();
-                // Fixed positions are read off the witness (see `place`).
-                let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
-                let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
-                let j = assemble(system, layout, &p, &x, &sketch);
+                let Some((p, j, r)) = at_modular_point(system, layout, &x)? else { continue };
                 let taken = taken.take();
-                let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
                 let forced = turns_are_forced(layout, &x, &j, r, &taken.free);
                 // (The larger rank; at the same rank, a witness whose turns are held.)
                 if best.as_ref().is_none_or(|b| (r, forced) > (b.2, b.4)) {
@@ -309,19 +305,11 @@ fn modular(
             needs_root = true;
         }
         if let Some((x, plan, _, taken, forced)) = found {
-            let turns = (3..=36).filter(|n| taken.divisions & (1 << n) != 0).collect();
-            let witness = Witness {
-                coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
-                source: WitnessSource::Modular,
-                plan,
-                // A free choice turned as drawn may be a special position, unless the
-                // constraints hold its turn (see `turns_are_forced`).
-                genericity_tested: forced,
-                sketch_rejected: sketch_rejected.clone(),
-                no_exact_witness: Some(why.clone()),
-                modulus: Some(q),
-                turns,
-            };
+            let mut witness = modular_witness(&x, plan, q, sketch_rejected, why);
+            witness.turns = (3..=36).filter(|n| taken.divisions & (1 << n) != 0).collect();
+            // A free choice turned as drawn may be a special position, unless the constraints
+            // hold its turn (see `turns_are_forced`).
+            witness.genericity_tested = forced;
             if forced {
                 return Ok(Some(witness));
             }
@@ -355,18 +343,40 @@ fn from_projection(
                 continue;
             };
             let x: Vec<ModQ> = coords.iter().map(crate::qla::Num::modular).collect();
-            // Fixed positions are read off the witness (see `place`).
-            let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
-            let Ok(p) = plan(system, layout, &x, &sketch)? else { continue };
-            let j = assemble(system, layout, &p, &x, &sketch);
-            let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
+            let Some((p, _, r)) = at_modular_point(system, layout, &x)? else { continue };
             if best.as_ref().is_none_or(|b| r > b.2) {
                 best = Some((x.iter().map(|v| v.value()).collect(), p, r));
             }
         }
         Ok(best)
     })?;
-    Ok(found.map(|(x, plan, _)| Witness {
+    Ok(found.map(|(x, plan, _)| modular_witness(&x, plan, q, sketch_rejected, why)))
+}
+
+/// The plan, the Jacobian and its rank at a point `x` modulo the current prime, fixed
+/// positions read off it (see `place`); `None` when a constraint does not hold there.
+fn at_modular_point(
+    system: &System,
+    layout: &Layout,
+    x: &[ModQ],
+) -> Result<Option<(Plan, Jacobian<ModQ>, usize)>, JacobianError> {
+    let sketch = |e: EntityIdx| Some(x[layout.columns(e)].to_vec());
+    let Ok(p) = plan(system, layout, x, &sketch)? else { return Ok(None) };
+    let j = assemble(system, layout, &p, x, &sketch);
+    let r = gcs_rank::echelon_rank(j.ncols, j.rows.iter().cloned()).0;
+    Ok(Some((p, j, r)))
+}
+
+/// The modular witness at the residues `x` modulo `q`, generic as tested and without turns
+/// (the turn prime's caller sets both).
+fn modular_witness(
+    x: &[u64],
+    plan: Plan,
+    q: u64,
+    sketch_rejected: &Option<Rejection>,
+    why: &NoWitness,
+) -> Witness {
+    Witness {
         coords: x.iter().map(|&v| BigRational::from_integer(v.into())).collect(),
         source: WitnessSource::Modular,
         plan,
@@ -375,7 +385,7 @@ fn from_projection(
         no_exact_witness: Some(why.clone()),
         modulus: Some(q),
         turns: Vec::new(),
-    }))
+    }
 }
 
 /// Whether the turns `[m, b, c]` a placement took at free choices (point `m` placed as `b`
