@@ -144,10 +144,15 @@ impl<'s> Equations<'s> {
     /// dimension's polynomial measure minus what it is where the dimension holds (the squared
     /// distance between two points minus the value squared; a radius or a coordinate
     /// difference minus the value). `None` for a dimension without a value or whose measure
-    /// is not a polynomial (distances to lines, angles, ratios): what a solver that needs
-    /// polynomials (homotopy continuation) cannot take.
+    /// is not a polynomial: what a solver that needs polynomials (homotopy continuation)
+    /// cannot take. A dimension whose measure is a quotient of polynomials (distances to
+    /// lines and planes, between parallel lines and planes, a ratio of lengths) gives its
+    /// equation cleared of the denominator instead, `p² − v²q²` where the measure is
+    /// `|p| / √q` (one row, zero exactly where the measure is the value; [`Self::target`] is
+    /// `None` for it); angles and the distances whose measure takes a branch give `None`.
     pub fn polynomial<F: Field>(&self, c: ConstraintIdx, x: &[F]) -> Option<Residual<F>> {
-        let target = F::from_rational(&self.target(c)?).ok()?;
+        let Some(target) = self.target(c) else { return self.cleared(c, x) };
+        let target = F::from_rational(&target).ok()?;
         let mut rows = self.rows(c, x);
         if !target.is_zero() {
             for v in &mut rows.values {
@@ -155,6 +160,19 @@ impl<'s> Equations<'s> {
             }
         }
         Some(rows)
+    }
+
+    /// The equation of a dimension cleared of its denominator (see [`Self::polynomial`]).
+    fn cleared<F: Field>(&self, c: ConstraintIdx, x: &[F]) -> Option<Residual<F>> {
+        let constraint = self.system.constraint(c);
+        let local = self.local(c, x);
+        let row =
+            laws::cleared(constraint.signature.metric()?, constraint.value.as_ref()?, &local)?;
+        Some(Residual {
+            constraint: c,
+            values: vec![row.value.clone()],
+            rows: vec![grad_row(&row, &local.cols)],
+        })
     }
 
     /// What every row of [`Self::rows`] of constraint `c` is where `c` holds at the user's

@@ -605,6 +605,74 @@ pub(crate) fn polynomial_target(metric: Metric, value: &BigRational) -> Option<B
     }
 }
 
+/// The polynomial equation of a dimension whose measure is a quotient (or the square root of
+/// one) of polynomials, cleared of its denominator and squared where the measure is unsigned,
+/// at the user's `value`: zero exactly where the measure is the value (and the denominator
+/// does not vanish) — the 2D point–line distance `s² − v²|n|²` (`s = n·x + c`), the distance
+/// between parallel 2D lines or planes `num² − v² k² |n₁|²` (the measure `|num| / (|k| |n₁|)`),
+/// the point–plane distance `s² − v²|n|²`, the 3D point–line distance `|x × d − m|² −
+/// v²|d|²`, a ratio of lengths `|u|² − v²|w|²`. `None` for the others: the dimensions
+/// [`polynomial_target`] gives (their rows minus a constant are already polynomial), angles,
+/// and the distances whose measure depends on a branch (skew or parallel 3D lines) or on the
+/// sign of a difference (circle to circle).
+pub(crate) fn cleared<F: Field>(
+    metric: Metric,
+    value: &BigRational,
+    l: &Local<'_, F>,
+) -> Option<Dual<F>> {
+    use Metric as M;
+    let v2 = Dual::constant(F::from_rational(&(value * value)).ok()?);
+    let d3 = l.is_3d();
+    let minus = |p: Dual<F>, q: Dual<F>| &p - &(&v2 * &q);
+    match metric {
+        M::DistancePointLine { point, line } if !d3 => {
+            let x = l.point(point);
+            let [a, b, c0] = l.line2(line);
+            let s = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
+            Some(minus(&s * &s, &(&a * &a) + &(&b * &b)))
+        }
+        M::DistancePointLine { point, line } => {
+            let (d, m) = l.line3(line);
+            let w = v::sub(&v::cross3(&l.point(point), &d), &m);
+            Some(minus(v::norm2(&w), v::norm2(&d)))
+        }
+        M::DistancePointPlane { point, plane } => {
+            let (n, delta) = l.plane(plane);
+            let s = &v::dot(&n, &l.point(point)) + &delta;
+            Some(minus(&s * &s, v::norm2(&n)))
+        }
+        M::DistanceLineLine(p, q) if !d3 => {
+            let [a1, b1, c1] = l.line2(p);
+            let [a2, b2, c2] = l.line2(q);
+            let n1 = [a1, b1];
+            let k = v::dot(&n1, &[a2, b2]);
+            let num = &(&c1 * &k) - &(&c2 * &v::norm2(&n1));
+            Some(minus(&num * &num, &(&k * &k) * &v::norm2(&n1)))
+        }
+        M::DistancePlanePlane(p, q) => {
+            let (n1, e1) = l.plane(p);
+            let (n2, e2) = l.plane(q);
+            let k = v::dot(&n1, &n2);
+            let num = &(&e1 * &k) - &(&e2 * &v::norm2(&n1));
+            Some(minus(&num * &num, &(&k * &k) * &v::norm2(&n1)))
+        }
+        M::LengthRatio(s, t) => {
+            let (p1, q1) = l.segment(s);
+            let (p2, q2) = l.segment(t);
+            Some(minus(v::norm2(&v::sub(&q1, &p1)), v::norm2(&v::sub(&q2, &p2))))
+        }
+        M::DistancePointPoint(..)
+        | M::Radius(_)
+        | M::DistanceX(..)
+        | M::DistanceY(..)
+        | M::DistanceLineLine(..)
+        | M::AngleLineLine(..)
+        | M::AnglePlanePlane(..)
+        | M::AngleLinePlane { .. }
+        | M::DistanceCircleCircle(..) => None,
+    }
+}
+
 /// The angle in degrees, in `[0°, 90°]`, between two undirected lines with directions `u`, `w`
 /// (`complement`: between a line and a plane of normal `w`, 90° minus that).
 fn unsigned_angle(u: &[Dual<f64>], w: &[Dual<f64>], complement: bool) -> Dual<f64> {

@@ -5,7 +5,11 @@
 //!
 //! The core's equations are the analysis's own ([`Equations::polynomial`]: the polynomial
 //! residuals of parameter-free constraints, the squared distance between two points minus the
-//! value squared, a radius or coordinate difference minus its value). Realizations are counted
+//! value squared, a radius or coordinate difference minus its value, a distance to a line or
+//! between parallel lines and a ratio of lengths cleared of their denominators; a dimension
+//! without a value is no equation, as in the solve). An entity with homogeneous coordinates
+//! (a line) gets a random complex affine chart on its normal, and its ends are brought back
+//! to the layout's normalisation before they are compared. Realizations are counted
 //! up to direct isometries, mirror images distinct (as the ESM paper and Capco et al. count):
 //! a floating plane core is held by one of its point-to-point distances — its first point where
 //! the solve put it, its second at the distance's value along the solved direction — and that
@@ -14,7 +18,11 @@
 //! ([`hold_triangle`]: the six motions of space), its three distances left out. The counts
 //! are then those of the literature: in the plane Capco et al.'s (K3,3: 16), in space those of
 //! Emiris, Tsigaridas and Varvitsiotis (2009) and Bartzos, Emiris, Legerský and Tsigaridas
-//! (2018), who hold a triangle too (the tetrahedron: 2, the octahedron: 16). Each unknown is
+//! (2018), who hold a triangle too (the tetrahedron: 2, the octahedron: 16). A floating plane
+//! node with no point-to-point distance is held by a point and a direction, or by a line
+//! ([`hold_general`]), which the half-turn about a point keeps: each realization is found
+//! with its half-turn, and one of the two is kept (the path counts, `finite`, count both).
+//! Each unknown is
 //! measured from its solved value in
 //! units of the core's size, so that the solved realization is the origin and the others are
 //! of order 1. Where the equations outnumber the unknowns (a constraint written with more
@@ -66,10 +74,10 @@ pub enum Shortfall {
     /// realizations are enumerated from a solved core only.
     Unsolved,
     /// Not a node homotopy continuation is set up for here: why (a 3D node of other entities
-    /// than points, entities with
-    /// homogeneous coordinates or internal relations, a dimension whose measure is not
-    /// polynomial, a node neither held in place nor floating rigidly with a point-to-point
-    /// distance to hold it by, fewer equations than unknowns).
+    /// than points, entities with internal relations (3D lines), a dimension whose measure
+    /// is not polynomial nor a quotient of polynomials (angles), a node neither held in place
+    /// nor floating rigidly with something to hold it by, dimensions without a value, a
+    /// flexible node, fewer equations than unknowns).
     Unsupported(&'static str),
     /// More unknowns than a node may have (`max`, [`MAX_UNKNOWNS`]).
     Unknowns {
@@ -125,10 +133,11 @@ impl Shortfall {
 /// The core's real realizations over the layout's columns (the rest of `x` kept), the one
 /// nearest the solved `x` first, with the path counts; why not ([`Shortfall`]) when the core
 /// is not one this can enumerate: a 3D core of other entities than points (or without a triangle
-/// of distances to hold it by), entities with homogeneous coordinates or internal
-/// relations, a dimension whose measure is not polynomial, a core that is neither held in
-/// place nor floating rigidly with a point-to-point distance to hold it by, more than 64
-/// unknowns, or more paths than `max_paths` (or [`homotopy::MAX_PATHS`]).
+/// of distances to hold it by), entities with internal relations (3D lines), a dimension
+/// whose measure is not polynomial nor a quotient of polynomials, a core that is neither held
+/// in place nor floating rigidly (the motions that move it: [`motions`]) with something to
+/// hold it by, more than 64 unknowns, or more paths than `max_paths` (or
+/// [`homotopy::MAX_PATHS`]).
 pub(crate) fn realizations(
     system: &System,
     layout: &Layout,
@@ -150,26 +159,47 @@ pub(crate) fn realizations(
         core.iter().flat_map(|&c| system.constraint_base_entities(c)).collect();
     entities.sort();
     entities.dedup();
+    // A dimension without a value imposes nothing in the solve (the analysis counts it): it
+    // is no equation here either.
+    let imposed: Vec<ConstraintIdx> = (core.iter().copied())
+        .filter(|&c| {
+            let constraint = system.constraint(c);
+            !(constraint.kind.is_metric() && constraint.value.is_none())
+        })
+        .collect();
+    let valueless = imposed.len() < core.len();
     let mut dof = 0usize;
+    let mut charted: Vec<EntityIdx> = Vec::new();
     for &e in &entities {
-        if let Some(repr) = layout.repr(e)
-            && (repr.homogeneous() || repr.internal_rows() > 0)
-        {
-            return Err(Unsupported("entities with homogeneous coordinates or internal relations"));
+        if let Some(repr) = layout.repr(e) {
+            if repr.internal_rows() > usize::from(repr.homogeneous()) {
+                return Err(Unsupported("entities with internal relations (3D lines)"));
+            }
+            if repr.homogeneous() {
+                charted.push(e);
+            }
         }
         if space && system.entity(e).kind() != gcs_model::EntityKind::Point {
             return Err(Unsupported("a 3D node with entities other than points"));
         }
         dof += system.entity(e).kind().dof(system.dim());
     }
-    let doc: usize = core.iter().map(|&c| system.constraint(c).doc).sum();
-    // The motions of a rigid whole: three in the plane, six in space.
-    let rigid = if space { 6 } else { 3 };
+    let doc: usize = imposed.iter().map(|&c| system.constraint(c).doc).sum();
+    // The motions that move the node: in the plane three, or two when no rotation acts that
+    // a translation does not give (parallel lines, concentric circles); in space six.
+    let rigid = if space { 6 } else { motions(system, layout, &entities, x) };
     // Held in place (nothing left), or floating as a rigid whole, held by a distance between
-    // two of its points (in space, by a triangle of them).
+    // two of its points (in space, by a triangle of them), or else by a point and a
+    // direction, or a line (`hold_general`).
     let floating = match dof.checked_sub(doc) {
         None => return Err(Unsupported("a node with more equations than freedoms")),
         Some(0) => false,
+        Some(_) if valueless => {
+            return Err(Unsupported(
+                "a node with dimensions without a value (the solve imposes none of them: its \
+                 realizations are not isolated)",
+            ));
+        }
         Some(d) if d > rigid => {
             return Err(Unsupported("a flexible node (its realizations are not isolated)"));
         }
@@ -180,16 +210,19 @@ pub(crate) fn realizations(
         }
         Some(_) => true,
     };
-    let (base, held, gauge) = if !floating {
-        (x.to_vec(), Vec::new(), Vec::new())
+    let distance = !floating || space || (rigid == 3 && !bars(system, core).is_empty());
+    let gauge = if !floating {
+        Gauge { base: x.to_vec(), held: Vec::new(), left_out: Vec::new(), ..Gauge::default() }
     } else if space {
         hold_triangle(system, layout, core, x)?
-    } else {
+    } else if distance {
         hold_distance(system, layout, core, x)?
+    } else {
+        hold_general(layout, &entities, x, rigid)?
     };
     let mut unknowns: Vec<usize> = Vec::new();
     for &e in &entities {
-        unknowns.extend(layout.columns(e).filter(|c| !held.contains(c)));
+        unknowns.extend(layout.columns(e).filter(|c| !gauge.held.contains(c)));
     }
     let n = unknowns.len();
     if n == 0 {
@@ -198,37 +231,98 @@ pub(crate) fn realizations(
     if n > MAX_UNKNOWNS {
         return Err(Shortfall::Unknowns { unknowns: n, max: MAX_UNKNOWNS });
     }
+    let base = gauge.base;
     let size = unknowns.iter().fold(0.0f64, |m, &c| m.max(base[c].abs())).max(1.0);
     // Points only, each an (x, y) pair: isotropic coordinates apply.
     let paired = entities.iter().filter(|&&e| !layout.columns(e).is_empty()).all(|&e| {
         layout.columns(e).len() == 2 && system.entity(e).kind() == gcs_model::EntityKind::Point
     }) && n.is_multiple_of(2);
     let equations_of: Vec<ConstraintIdx> =
-        core.iter().copied().filter(|c| !gauge.contains(c)).collect();
+        imposed.iter().copied().filter(|c| !gauge.left_out.contains(c)).collect();
+    let slot_of = |col: usize| unknowns.iter().position(|&u| u == col);
+    let mut extra: Vec<Extra> = Vec::new();
+    // The gauge's linear conditions, on the columns' displacements from `base`.
+    for condition in &gauge.linear {
+        let terms: Vec<(usize, C)> = (condition.iter())
+            .filter_map(|&(col, a)| Some((slot_of(col)?, C::new(a, 0.0))))
+            .collect();
+        extra.push(Extra::Linear(C::new(0.0, 0.0), terms));
+    }
+    // Homogeneous coordinates (a line's `a, b, c`, a plane's `a, b, c, d`) are defined up to
+    // a factor: each such entity gets a random complex affine chart on its normal (all but
+    // the last coordinate), `Σ wᵢ (nᵢ − baseᵢ) = 0`, which makes its realizations isolated
+    // and leaves out of the chart the "line at infinity" `n = 0` — where a distance to a line
+    // cleared of its denominator, `s² − v²|n|²`, holds whatever the rest, a component of
+    // solutions that is no line — and only lines of one non-real direction besides; the
+    // ends are brought back to the layout's own normalisation (`base · x = |base|²`, all the
+    // coordinates) before they are compared ([`Param::renormalise`]).
+    let mut rng = gcs_model::rng::SplitMix64::new(seed ^ 0xC4A7_0000);
+    for &e in &charted {
+        let columns: Vec<(usize, f64)> =
+            (layout.columns(e)).filter_map(|col| Some((slot_of(col)?, base[col]))).collect();
+        if columns.is_empty() {
+            continue;
+        }
+        let normal = layout.columns(e).end - 1;
+        let weights: Vec<(usize, C)> = (layout.columns(e))
+            .filter(|&col| col < normal)
+            .filter_map(&slot_of)
+            .map(|j| (j, C::new(rng.unit_f64() - 0.5, rng.unit_f64() - 0.5)))
+            .collect();
+        extra.push(Extra::Chart(weights, columns));
+    }
     let param = Param {
         n,
         base,
         map: unknowns.iter().enumerate().map(|(i, &c)| (c, vec![(i, size)])).collect(),
-        extra: Vec::new(),
+        extra,
         paired,
         size,
     };
-    let (counts, found) = solve_param(
+    let (mut counts, found) = solve_param(
         (system, layout, equations),
         &equations_of,
-        core,
+        &imposed,
         &param,
         x,
         (max_paths, tolerance),
         seed,
     )?;
-    Ok((counts, found.into_iter().map(|f| f.1).collect()))
+    // A gauge that holds a point and a direction (or a line) keeps each realization and its
+    // half-turn about the held centre: one of each pair is kept, the one nearest the solve's.
+    let mut kept: Vec<Vec<f64>> = Vec::new();
+    for (_, y) in found {
+        let twin = gauge.centre.map(|c| half_turn(layout, &entities, (&y, x), c));
+        let seen = twin.is_some_and(|t| {
+            kept.iter().any(|k| {
+                (entities.iter().flat_map(|&e| layout.columns(e)))
+                    .all(|col| (k[col] - t[col]).abs() <= 1e-7 * size)
+            })
+        });
+        if !seen {
+            kept.push(y);
+        }
+    }
+    counts.real = kept.len();
+    Ok((counts, kept))
 }
 
-/// How a floating node is held (the trivial motions modded out), as the configuration to
-/// start from, the columns held and the constraints that then hold by construction (left out
-/// of the equations).
-type Held = (Vec<f64>, Vec<usize>, Vec<ConstraintIdx>);
+/// How a floating node is held (the trivial motions modded out).
+#[derive(Default)]
+struct Gauge {
+    /// The configuration to start from.
+    base: Vec<f64>,
+    /// The columns held (at `base`).
+    held: Vec<usize>,
+    /// The constraints that then hold by construction (left out of the equations).
+    left_out: Vec<ConstraintIdx>,
+    /// Linear conditions on the columns' displacements from `base`, `Σ a·(x − base) = 0`, as
+    /// (column, a).
+    linear: Vec<Vec<(usize, f64)>>,
+    /// The centre of the half-turn that keeps the gauge (a point and a direction through it,
+    /// or an undirected line, are kept by it): each realization is then found twice.
+    centre: Option<[f64; 2]>,
+}
 
 /// The dimensioned point-to-point distances of `core` (a positive value), with their points.
 fn bars(
@@ -260,7 +354,7 @@ fn hold_distance(
     layout: &Layout,
     core: &[ConstraintIdx],
     x: &[f64],
-) -> Result<Held, Shortfall> {
+) -> Result<Gauge, Shortfall> {
     let Some(&(g, a, b, d)) = bars(system, core).first() else {
         return Err(Shortfall::Unsupported(
             "a floating node without a dimensioned point-to-point distance to hold it by",
@@ -275,7 +369,7 @@ fn hold_distance(
     let mut base = x.to_vec();
     base[cb.start] = x[ca.start] + d * u[0] / len;
     base[cb.start + 1] = x[ca.start + 1] + d * u[1] / len;
-    Ok((base, ca.chain(cb).collect(), vec![g]))
+    Ok(Gauge { base, held: ca.chain(cb).collect(), left_out: vec![g], ..Gauge::default() })
 }
 
 /// A node in space held by its first triangle of dimensioned point-to-point distances
@@ -291,7 +385,7 @@ fn hold_triangle(
     layout: &Layout,
     core: &[ConstraintIdx],
     x: &[f64],
-) -> Result<Held, Shortfall> {
+) -> Result<Gauge, Shortfall> {
     let bars = bars(system, core);
     let length = |p: EntityIdx, q: EntityIdx| {
         bars.iter().find(|b| (b.1, b.2) == (p, q) || (b.1, b.2) == (q, p)).map(|b| (b.0, b.3))
@@ -353,7 +447,160 @@ fn hold_triangle(
         base[cb.start + k] = pa[k] + dab * u[k];
         base[cc.start + k] = pa[k] + alpha * u[k] + beta * w[k];
     }
-    Ok((base, ca.chain(cb).chain(cc).collect(), gauge.to_vec()))
+    Ok(Gauge {
+        base,
+        held: ca.chain(cb).chain(cc).collect(),
+        left_out: gauge.to_vec(),
+        ..Gauge::default()
+    })
+}
+
+/// The number of independent displacements of the plane that move `entities` at `x` (the
+/// rank of their velocities, in floating point — a count of motions for the homotopy's
+/// gauge, which is floating point throughout, never a rank the analysis reports): 3 for a node
+/// with two distinct points, 2 for parallel lines or concentric circles alone.
+fn motions(system: &System, layout: &Layout, entities: &[EntityIdx], x: &[f64]) -> usize {
+    let Ok(all) = gcs_jacobian::motions::generators(system, layout, x) else { return 0 };
+    let k = all.len();
+    let columns: Vec<usize> = entities.iter().flat_map(|&e| layout.columns(e)).collect();
+    let mut rows: Vec<Vec<f64>> =
+        all.iter().map(|g| columns.iter().map(|&c| g[c]).collect()).collect();
+    // Gaussian elimination with partial pivoting, relative to the largest velocity.
+    let largest = rows.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let width = rows.first().map_or(0, Vec::len);
+    let mut rank = 0;
+    for col in 0..width {
+        let Some(p) = (rank..k).max_by(|&a, &b| rows[a][col].abs().total_cmp(&rows[b][col].abs()))
+        else {
+            break;
+        };
+        if !(rows[p][col].abs() > 1e-9 * largest) {
+            continue;
+        }
+        rows.swap(rank, p);
+        let pivot = rows[rank].clone();
+        for row in &mut rows[rank + 1..] {
+            let f = row[col] / pivot[col];
+            for (v, p) in row[col..].iter_mut().zip(&pivot[col..]) {
+                *v -= f * p;
+            }
+        }
+        rank += 1;
+    }
+    rank
+}
+
+/// A floating plane node with no point-to-point distance to hold it by, held by what it has
+/// (`motions`: the displacements that move it, [`motions`]):
+/// - a point (a point, or a circle's centre) where the solve put it, and, when rotations move
+///   the node, the direction from it to the node's farthest other point (that point kept on
+///   the solved line through the first: one linear condition), or else the direction of a
+///   line of the node (its normal kept parallel to the solved one);
+/// - with no point, a line where the solve put it, and, when translations along it move the
+///   node, a second line (not parallel to it) kept through the solved intersection.
+///
+/// A direction through a point is kept by the half-turn about the point, and a held line by
+/// the half-turns about its points: each realization is then found twice, once turned
+/// (`centre`), and one of each pair is kept — the counts stay those of realizations up to
+/// direct isometries, mirror images distinct.
+fn hold_general(
+    layout: &Layout,
+    entities: &[EntityIdx],
+    x: &[f64],
+    motions: usize,
+) -> Result<Gauge, Shortfall> {
+    let unsupported = Shortfall::Unsupported(
+        "a floating node without a point and a direction, or lines, to hold it by",
+    );
+    let mut anchors: Vec<usize> = Vec::new();
+    let mut lines: Vec<usize> = Vec::new();
+    for &e in entities {
+        let start = layout.columns(e).start;
+        match layout.repr(e) {
+            Some(gcs_jacobian::Repr::Point2 | gcs_jacobian::Repr::Circle) => anchors.push(start),
+            Some(gcs_jacobian::Repr::Line2) => lines.push(start),
+            _ => {}
+        }
+    }
+    let at = |c: usize| [x[c], x[c + 1]];
+    let size = x.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    let mut gauge = Gauge { base: x.to_vec(), ..Gauge::default() };
+    if let Some(&p) = anchors.first() {
+        gauge.held.extend([p, p + 1]);
+        if motions == 2 {
+            return Ok(gauge);
+        }
+        let centre = at(p);
+        let farthest = (anchors.iter().copied())
+            .map(|q| (q, (at(q)[0] - centre[0]).hypot(at(q)[1] - centre[1])))
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((q, d)) = farthest.filter(|f| f.1 > 1e-6 * size) {
+            let u = [(x[q] - centre[0]) / d, (x[q + 1] - centre[1]) / d];
+            gauge.linear.push(vec![(q, u[1]), (q + 1, -u[0])]);
+        } else if let Some(&l) = lines.iter().find(|&&l| x[l].hypot(x[l + 1]) > 0.0) {
+            gauge.linear.push(vec![(l, x[l + 1]), (l + 1, -x[l])]);
+        } else {
+            return Err(unsupported);
+        }
+        gauge.centre = Some(centre);
+        return Ok(gauge);
+    }
+    let Some(&l) = lines.first() else { return Err(unsupported) };
+    let (a, b, c) = (x[l], x[l + 1], x[l + 2]);
+    let norm = a * a + b * b;
+    if !(norm > 0.0) {
+        return Err(unsupported);
+    }
+    gauge.held.extend([l, l + 1, l + 2]);
+    if motions == 2 {
+        gauge.centre = Some([-c * a / norm, -c * b / norm]);
+        return Ok(gauge);
+    }
+    let second = lines.iter().copied().find(|&m| {
+        let cross = a * x[m + 1] - b * x[m];
+        cross.abs() > 1e-9 * norm.sqrt() * x[m].hypot(x[m + 1])
+    });
+    let Some(m) = second else { return Err(unsupported) };
+    let (a2, b2, c2) = (x[m], x[m + 1], x[m + 2]);
+    let det = a * b2 - b * a2;
+    let meet = [(b * c2 - b2 * c) / det, (c * a2 - c2 * a) / det];
+    gauge.linear.push(vec![(m, meet[0]), (m + 1, meet[1]), (m + 2, 1.0)]);
+    gauge.centre = Some(meet);
+    Ok(gauge)
+}
+
+/// The configuration `y` with `entities` turned by a half-turn about `centre` (a point and a
+/// circle's centre to `2·centre − p`, a line `(a, b, c)` to `(−a, −b, c + 2(a, b)·centre)`,
+/// brought back to the layout's normalisation at the solved `x`, `x · y = |x|²`).
+fn half_turn(
+    layout: &Layout,
+    entities: &[EntityIdx],
+    (y, x): (&[f64], &[f64]),
+    centre: [f64; 2],
+) -> Vec<f64> {
+    let mut t = y.to_vec();
+    for &e in entities {
+        let s = layout.columns(e).start;
+        match layout.repr(e) {
+            Some(gcs_jacobian::Repr::Point2 | gcs_jacobian::Repr::Circle) => {
+                t[s] = 2.0 * centre[0] - y[s];
+                t[s + 1] = 2.0 * centre[1] - y[s + 1];
+            }
+            Some(gcs_jacobian::Repr::Line2) => {
+                let turned =
+                    [-y[s], -y[s + 1], y[s + 2] + 2.0 * (y[s] * centre[0] + y[s + 1] * centre[1])];
+                let dot: f64 = (0..3).map(|k| turned[k] * x[s + k]).sum();
+                let norm: f64 = (0..3).map(|k| x[s + k] * x[s + k]).sum();
+                // (A line whose turned coordinates are orthogonal to its own keeps them.)
+                let factor = if dot.abs() > 1e-12 * norm { norm / dot } else { 1.0 };
+                for k in 0..3 {
+                    t[s + k] = factor * turned[k];
+                }
+            }
+            _ => {}
+        }
+    }
+    t
 }
 
 /// Every real placement of rigid bodies and free points that satisfies `constraints` (each as
@@ -539,13 +786,43 @@ enum Extra {
     /// `constant + Σ coefficient·y_j = 0`, in units of the size: one of the two isotropic
     /// coordinates of a point two rigid bodies share, the same from both.
     Linear(C, Vec<(usize, C)>),
+    /// The chart of an entity with homogeneous coordinates (unknowns `j`, at `base_j`):
+    /// `Σ w_j y_j = 0` over its normal with random complex `w` in the homotopy (its solutions
+    /// then isolated); on the real equations, the layout's own normalisation,
+    /// `Σ base_j y_j / |base| = 0` (`base · x = |base|²`), which the ends are brought to
+    /// ([`Param::renormalise`]).
+    Chart(Vec<(usize, C)>, Vec<(usize, f64)>),
 }
 
 impl Extra {
     fn degree(&self) -> u32 {
         match self {
             Extra::Rotation(..) => 2,
-            Extra::Linear(..) => 1,
+            Extra::Linear(..) | Extra::Chart(..) => 1,
+        }
+    }
+
+    /// Its value and gradient at a real `y`, as the real equations have it (a chart: the
+    /// layout's normalisation); `None` for the complex linear conditions, whose real and
+    /// imaginary parts are two equations.
+    fn eval_real(&self, y: &[f64], gradient: &mut [f64]) -> Option<f64> {
+        match self {
+            Extra::Rotation(a, b) => {
+                gradient[*a] += 2.0 * y[*a];
+                gradient[*b] += 2.0 * y[*b];
+                Some(y[*a] * y[*a] + y[*b] * y[*b] - 1.0)
+            }
+            Extra::Linear(..) => None,
+            Extra::Chart(_, base) => {
+                let norm =
+                    base.iter().map(|(_, b)| b * b).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+                let mut v = 0.0;
+                for (j, b) in base {
+                    gradient[*j] += b / norm;
+                    v += b / norm * y[*j];
+                }
+                Some(v)
+            }
         }
     }
 
@@ -565,7 +842,40 @@ impl Extra {
                 }
                 v
             }
+            Extra::Chart(terms, _) => {
+                let mut v = C::new(0.0, 0.0);
+                for (j, w) in terms {
+                    gradient[*j] += w;
+                    v += w * y[*j];
+                }
+                v
+            }
         }
+    }
+}
+
+impl Param {
+    /// A complex end `y` with each homogeneous entity's coordinates `base + size·y` rescaled
+    /// by the complex factor that puts them on the layout's normalisation,
+    /// `base · x = |base|²` (a real solution is then real); `None` when they are orthogonal
+    /// to `base` (no such factor).
+    fn renormalise(&self, y: &[C]) -> Option<Vec<C>> {
+        let mut out = y.to_vec();
+        for e in &self.extra {
+            let Extra::Chart(_, base) = e else { continue };
+            let norm: f64 = base.iter().map(|(_, b)| b * b).sum();
+            let coordinate = |j: usize, b: f64| C::new(b, 0.0) + y[j] * self.size;
+            let dot: C = base.iter().map(|&(j, b)| coordinate(j, b) * b).sum();
+            let length: f64 = base.iter().map(|&(j, b)| coordinate(j, b).norm_sqr()).sum();
+            if !(dot.norm() > 1e-9 * (norm * length).sqrt()) {
+                return None;
+            }
+            let factor = C::new(norm, 0.0) / dot;
+            for &(j, b) in base {
+                out[j] = (coordinate(j, b) * factor - b) / self.size;
+            }
+        }
+        Some(out)
     }
 }
 
@@ -647,9 +957,18 @@ fn solve_param(
     let pool: std::sync::Mutex<Vec<Vec<C>>> = std::sync::Mutex::new(Vec::new());
     // What each constraint's rows are where it holds (computed once: the rows minus it are
     // `Equations::polynomial`).
+    // (A dimension cleared of its denominator has no such constant: its polynomial rows are
+    // evaluated, `cleared`, with target 0.)
     let mut targets: std::collections::HashMap<ConstraintIdx, C> = Default::default();
+    let mut cleared: std::collections::HashSet<ConstraintIdx> = Default::default();
     for &c in constraints {
-        let target = equations.target(c).and_then(|t| t.to_f64()).ok_or(not_polynomial.clone())?;
+        let target = match equations.target(c) {
+            Some(t) => t.to_f64().ok_or(not_polynomial.clone())?,
+            None => {
+                cleared.insert(c);
+                0.0
+            }
+        };
         targets.insert(c, C::new(target, 0.0));
     }
     let eval = |y: &[C]| -> (Vec<C>, Vec<C>) {
@@ -666,7 +985,8 @@ fn solve_param(
             match row {
                 Row::Constraint(c, r) => {
                     if cache.as_ref().is_none_or(|(cc, _)| *cc != c) {
-                        cache = Some((c, equations.rows(c, &full)));
+                        cache =
+                            node_rows(equations, c, &full, cleared.contains(&c)).map(|r| (c, r));
                     }
                     let Some((_, res)) = &cache else { continue };
                     // In units of the size: F(base + size·y) / size^degree.
@@ -753,6 +1073,7 @@ fn solve_param(
         param,
         slot: &slot,
         targets: &targets,
+        cleared: &cleared,
         degrees: &degrees_of,
     };
     let configuration = |real: &[f64]| -> Vec<f64> {
@@ -770,6 +1091,7 @@ fn solve_param(
     let mut found: Vec<(f64, RealEnd)> = Vec::new();
     for s in &ends.solutions {
         let s = if isotropic { to_xy(s) } else { s.clone() };
+        let Some(s) = param.renormalise(&s) else { continue };
         let magnitude = 1.0 + s.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
         if s.iter().any(|v| !(v.im.abs() <= 1e-7 * magnitude)) {
             continue;
@@ -815,6 +1137,8 @@ struct RealRows<'r> {
     param: &'r Param,
     slot: &'r [usize],
     targets: &'r std::collections::HashMap<ConstraintIdx, C>,
+    /// The dimensions cleared of their denominators ([`node_rows`]).
+    cleared: &'r std::collections::HashSet<ConstraintIdx>,
     /// Each constraint's rows' degrees (`Equations::degrees`, computed once).
     degrees: &'r std::collections::HashMap<ConstraintIdx, Vec<u32>>,
 }
@@ -824,8 +1148,12 @@ impl RealRows<'_> {
     fn extra_residual(&self, y: &[f64]) -> f64 {
         let complex: Vec<C> = y.iter().map(|v| C::new(*v, 0.0)).collect();
         let mut gradient = vec![C::new(0.0, 0.0); y.len()];
+        let mut real_gradient = vec![0.0; y.len()];
         (self.param.extra.iter())
-            .map(|e| e.eval(&complex, &mut gradient).norm())
+            .map(|e| match e.eval_real(y, &mut real_gradient) {
+                Some(v) => v.abs(),
+                None => e.eval(&complex, &mut gradient).norm(),
+            })
             .fold(0.0f64, f64::max)
     }
 }
@@ -844,7 +1172,9 @@ impl gcs_rank::Residuals for RealRows<'_> {
         let mut values = Vec::new();
         let mut rows = Vec::new();
         for &c in self.constraints {
-            let res = self.equations.rows(c, &full);
+            let Some(res) = node_rows(self.equations, c, &full, self.cleared.contains(&c)) else {
+                continue;
+            };
             let Some(degrees) = self.degrees.get(&c) else { continue };
             let target = self.targets.get(&c).map_or(0.0, |t| t.re);
             for (k, row) in res.rows.iter().enumerate() {
@@ -867,6 +1197,12 @@ impl gcs_rank::Residuals for RealRows<'_> {
         }
         let complex: Vec<C> = y.iter().map(|v| C::new(*v, 0.0)).collect();
         for e in &param.extra {
+            let mut real_gradient = vec![0.0; n];
+            if let Some(v) = e.eval_real(y, &mut real_gradient) {
+                values.push(v);
+                rows.push(dense_to_sparse(real_gradient));
+                continue;
+            }
             let mut gradient = vec![C::new(0.0, 0.0); n];
             let v = e.eval(&complex, &mut gradient);
             values.push(v.re);
@@ -878,6 +1214,18 @@ impl gcs_rank::Residuals for RealRows<'_> {
         }
         (values, rows)
     }
+}
+
+/// The rows of constraint `c` at `x` as a node's equations take them: [`Equations::rows`]
+/// (minus the constraint's target, by the caller), or for a dimension cleared of its
+/// denominator (`cleared`) its polynomial equation ([`Equations::polynomial`], target 0).
+fn node_rows<F: gcs_rank::Field>(
+    equations: &Equations<'_>,
+    c: ConstraintIdx,
+    x: &[F],
+    cleared: bool,
+) -> Option<gcs_jacobian::Residual<F>> {
+    if cleared { equations.polynomial(c, x) } else { Some(equations.rows(c, x)) }
 }
 
 fn dense_to_sparse(v: Vec<f64>) -> gcs_rank::SparseRow<f64> {
@@ -1019,6 +1367,7 @@ pub(crate) mod tests {
             param: &param,
             slot: &slot,
             targets: &targets,
+            cleared: &Default::default(),
             degrees: &degrees,
         };
         let exact = [1.5 / size, 2.5 / size];
