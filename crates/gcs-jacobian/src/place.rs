@@ -1932,8 +1932,10 @@ impl Placer<'_> {
                     anchor: k.anchor,
                 })
                 .collect();
-            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &coords)
-                .with_lines(known);
+            // (The values alone: the equations, not their derivatives.)
+            let local =
+                Local::over(self.system, self.layout, &self.bases[ci.index()], &coords, &[])
+                    .with_lines(known);
             let c = self.system.constraint(*ci);
             let none = |_: EntityIdx| None;
             let sketch = |b: EntityIdx| {
@@ -2282,8 +2284,14 @@ impl Placer<'_> {
     fn ready_values(&self, ready: &[(ConstraintIdx, Vec<KnownLine<Q>>)]) -> Vec<Q> {
         let mut out = Vec::new();
         for (ci, known) in ready {
-            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords)
-                .with_lines(known.clone());
+            let bases = &self.bases[ci.index()];
+            // (Values alone modulo the prime, see `laws_at`.)
+            let local = if self.modular {
+                Local::over(self.system, self.layout, bases, &self.coords, &[])
+            } else {
+                Local::new(self.system, self.layout, bases, &self.coords)
+            }
+            .with_lines(known.clone());
             let none = |_: EntityIdx| None;
             let sketch = |b: EntityIdx| self.sketch_of(*ci, b);
             let c = self.system.constraint(*ci);
@@ -2297,7 +2305,10 @@ impl Placer<'_> {
 
     /// The law of `ci` (with its difference-of-squares form) with the group being placed (its
     /// columns `cols`) at `pref` and at `pref + delta`, and the local columns of the
-    /// constraint.
+    /// constraint. Only the values at `pref + delta` are read, and the derivatives at `pref`
+    /// with respect to `cols`: modulo the prime, the law is differentiated with respect to
+    /// those alone, and not at all at `pref + delta` ([`Local::over`]: the same values). Over
+    /// ℚ every derivative is computed, as the work bound ([`qla::rational_work`]) counts them.
     fn laws_at(
         &mut self,
         ci: ConstraintIdx,
@@ -2309,17 +2320,23 @@ impl Placer<'_> {
         let signature = self.system.constraint(ci).signature;
         let variant = self.variant[ci.index()];
         let shifted: Vec<Q> = pref.iter().zip(delta).map(|(a, b)| a + b).collect();
-        let mut at = |x: &[Q]| {
+        let modular = self.modular;
+        let mut at = |x: &[Q], vars: &[usize]| {
             for (col, v) in cols.iter().zip(x) {
                 self.coords[*col] = v.clone();
             }
-            let local = Local::new(self.system, self.layout, &self.bases[ci.index()], &self.coords)
-                .with_lines(known.to_vec());
+            let bases = &self.bases[ci.index()];
+            let local = if modular {
+                Local::over(self.system, self.layout, bases, &self.coords, vars)
+            } else {
+                Local::new(self.system, self.layout, bases, &self.coords)
+            }
+            .with_lines(known.to_vec());
             let sketch = |b: EntityIdx| self.sketch_of(ci, b);
             (laws::law(signature, variant, &local, &sketch, true), local.cols)
         };
-        let (l0, local_cols) = at(pref);
-        let (l1, _) = at(&shifted);
+        let (l0, local_cols) = at(pref, cols);
+        let (l1, _) = at(&shifted, &[]);
         for (col, v) in cols.iter().zip(pref) {
             self.coords[*col] = v.clone();
         }

@@ -45,17 +45,53 @@ impl<'a, F: Field> Local<'a, F> {
         entities: &[EntityIdx],
         witness: &[F],
     ) -> Local<'a, F> {
-        let n: usize = entities.iter().map(|e| layout.columns(*e).len()).sum();
+        let cols: Vec<usize> = entities.iter().flat_map(|e| layout.columns(*e)).collect();
+        let mut next = 0;
+        Local::build(system, layout, entities, witness, cols, |_| {
+            next += 1;
+            Some(next - 1)
+        })
+    }
+
+    /// The same with only the columns `vars` as variables (local variable `i` is column
+    /// `vars[i]`) and every other coordinate a constant; with no `vars`, the values alone.
+    /// Every value, and every derivative with respect to a column of `vars`, is the one
+    /// [`Local::new`] gives: dual arithmetic computes each derivative on its own, from the
+    /// values and the same derivative of the operands — at the cost of those columns only.
+    pub(crate) fn over(
+        system: &'a System,
+        layout: &Layout,
+        entities: &[EntityIdx],
+        witness: &[F],
+        vars: &[usize],
+    ) -> Local<'a, F> {
+        Local::build(system, layout, entities, witness, vars.to_vec(), |col| {
+            vars.iter().position(|c| *c == col)
+        })
+    }
+
+    /// The views of `entities` at `witness`, with column `col` the local variable `var(col)`
+    /// (of `cols.len()`) or a constant.
+    fn build(
+        system: &'a System,
+        layout: &Layout,
+        entities: &[EntityIdx],
+        witness: &[F],
+        cols: Vec<usize>,
+        mut var: impl FnMut(usize) -> Option<usize>,
+    ) -> Local<'a, F> {
+        let n = cols.len();
         let mut vars = Vec::with_capacity(entities.len());
-        let mut cols = Vec::with_capacity(n);
         let homogeneous =
             entities.iter().map(|e| layout.repr(*e).is_some_and(|r| r.homogeneous())).collect();
         for &e in entities {
-            let mut ev = Vec::new();
-            for col in layout.columns(e) {
-                ev.push(Dual::variable(witness[col].clone(), cols.len(), n));
-                cols.push(col);
-            }
+            let ev = layout
+                .columns(e)
+                .map(|col| match var(col) {
+                    Some(i) => Dual::variable(witness[col].clone(), i, n),
+                    None => Dual::constant(witness[col].clone()),
+                })
+                .collect();
             vars.push((e, ev));
         }
         Local { system, vars, cols, homogeneous, known: Vec::new() }
