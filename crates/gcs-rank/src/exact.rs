@@ -222,6 +222,8 @@ type Residues = Vec<(usize, u64)>;
 struct Lift {
     /// `(id, residue modulo the current modulus)`, sorted by id.
     residues: Vec<(usize, BigInt)>,
+    /// The id whose reconstruction failed last ([`Lift::reconstruct`]).
+    failed: Option<usize>,
 }
 
 impl Lift {
@@ -266,10 +268,23 @@ impl Lift {
         self.residues = merged;
     }
 
-    fn reconstruct(&self, modulus: &BigInt) -> Option<Vec<(usize, BigRational)>> {
+    /// Every coefficient reconstructed from its residue, `None` when one does not reconstruct.
+    /// The one that failed last is tried first: the largest coefficient needs the most primes,
+    /// so it usually fails again, and one failure decides (the answer is the same in any
+    /// order).
+    fn reconstruct(&mut self, modulus: &BigInt) -> Option<Vec<(usize, BigRational)>> {
+        if let Some(id) = self.failed
+            && let Some((_, r)) = self.residues.iter().find(|(x, _)| *x == id)
+            && rational_reconstruction(r, modulus).is_none()
+        {
+            return None;
+        }
         let mut out = Vec::with_capacity(self.residues.len());
         for (id, r) in &self.residues {
-            let q = rational_reconstruction(r, modulus)?;
+            let Some(q) = rational_reconstruction(r, modulus) else {
+                self.failed = Some(*id);
+                return None;
+            };
             if !Field::is_zero(&q) {
                 out.push((*id, q));
             }
@@ -507,8 +522,10 @@ fn lift_circuit(
     first: &[(usize, ModP)],
 ) -> Option<(Vec<(usize, BigRational)>, usize)> {
     let circuit: Vec<usize> = first.iter().map(|(id, _)| *id).collect();
-    let mut lift =
-        Lift { residues: first.iter().map(|(id, c)| (*id, BigInt::from(c.value()))).collect() };
+    let mut lift = Lift {
+        residues: first.iter().map(|(id, c)| (*id, BigInt::from(c.value()))).collect(),
+        failed: None,
+    };
     let mut modulus = BigInt::from(ModP::PRIME);
     let needed = 2 * coefficient_bound_bits(rows, &circuit, i) + 2;
     let mut used = 1;
@@ -893,12 +910,51 @@ mod tests {
     }
 
     #[test]
+    fn reconstruction_tries_the_last_failure_first_with_the_same_answer() {
+        // Three coefficients, the middle one too large for one prime: the lift remembers it,
+        // and each answer is the one a fresh lift (no failure remembered) gives.
+        let xs = [
+            q(3, 7),
+            BigRational::new(BigInt::from(5).pow(40u32), BigInt::from(11).pow(12u32)),
+            q(-2, 9),
+        ];
+        let image = |p: u64| -> Vec<(usize, u64)> {
+            xs.iter()
+                .enumerate()
+                .map(|(id, x)| (id, with_modulus(p, || ModQ::from_rational(x).unwrap().value())))
+                .collect()
+        };
+        let first = image(ModP::PRIME);
+        let mut lift = Lift {
+            residues: first.iter().map(|(id, r)| (*id, BigInt::from(*r))).collect(),
+            failed: None,
+        };
+        let mut modulus = BigInt::from(ModP::PRIME);
+        let mut answers = Vec::new();
+        for k in 0..4 {
+            let fresh =
+                Lift { residues: lift.residues.clone(), failed: None }.reconstruct(&modulus);
+            let answer = lift.reconstruct(&modulus);
+            assert_eq!(answer, fresh);
+            if answer.is_none() {
+                assert_eq!(lift.failed, Some(1));
+            }
+            answers.push(answer);
+            let p = nth_lifting_prime(k);
+            lift.absorb(&modulus, p, &image(p));
+            modulus *= BigInt::from(p);
+        }
+        assert_eq!(answers[0], None);
+        assert_eq!(answers.last().cloned().flatten(), Some(xs.into_iter().enumerate().collect()));
+    }
+
+    #[test]
     fn chinese_remaindering_lifts_large_coefficients() {
         let x = BigRational::new(BigInt::from(3).pow(30u32), BigInt::from(7).pow(15u32));
         let m1 = BigInt::from(ModP::PRIME);
         let r1 = ModP::from_rational(&x).unwrap().value();
         let r2 = ModPrime::<SECOND_PRIME>::from_rational(&x).unwrap().value();
-        let mut lift = Lift { residues: vec![(0, BigInt::from(r1))] };
+        let mut lift = Lift { residues: vec![(0, BigInt::from(r1))], failed: None };
         assert_ne!(lift.reconstruct(&m1), Some(vec![(0, x.clone())]));
         lift.absorb(&m1, SECOND_PRIME, &[(0, r2)]);
         let m12 = &m1 * BigInt::from(SECOND_PRIME);
