@@ -3039,6 +3039,78 @@ mod tests {
         assert_eq!(witness.source, WitnessSource::Modular);
     }
 
+    /// [`crate::views::Local::over`] (the laws modulo the prime, see `Placer::laws_at`) gives
+    /// the values, the difference-of-squares form and the derivatives with respect to its
+    /// columns that [`crate::views::Local::new`] gives, kind for kind (a rational constant
+    /// stays one), for every constraint of a sketch, every variant, and every base entity of it
+    /// taken as the group being placed; and with no columns, the same values.
+    #[test]
+    fn laws_over_some_columns_are_the_laws_restricted_to_them() {
+        use super::restrict;
+        use crate::laws;
+        use crate::qla::Num;
+        use crate::views::Local;
+        use gcs_rank::{ModQ, Rat};
+        let system = gcs_model::System::from_ron_str(FILLET_CORNERS, None).unwrap();
+        let layout = Layout::new(&system);
+        gcs_rank::with_modulus(gcs_rank::WITNESS_PRIMES[1], || {
+            let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+            // Residues, and a small rational every fifth column (mixed arithmetic).
+            let coords: Vec<Num> = (0..layout.ncols())
+                .map(|i| {
+                    state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+                    if i % 5 == 0 {
+                        Num::R(Rat::from((state >> 40) as i64 - (1 << 23)))
+                    } else {
+                        Num::P(ModQ::new(state >> 3))
+                    }
+                })
+                .collect();
+            let show = |xs: &[Num]| format!("{xs:?}");
+            let none = |_: gcs_model::EntityIdx| None;
+            let mut compared = 0;
+            for ci in system.constraint_indices() {
+                let sig = system.constraint(ci).signature;
+                let bases = system.constraint_base_entities(ci);
+                let full = Local::new(&system, &layout, &bases, &coords);
+                for variant in 0..laws::law(sig, 0, &full, &none, true).variants {
+                    let whole = laws::law(sig, variant, &full, &none, true);
+                    let duals = |law: &laws::Law<Num>| {
+                        let mut ds = law.rows.clone();
+                        if let Some((p, m)) = &law.split {
+                            ds.extend(p.iter().chain(m).cloned());
+                        }
+                        ds
+                    };
+                    let values = |law: &laws::Law<Num>| {
+                        show(&duals(law).iter().map(|d| d.value.clone()).collect::<Vec<_>>())
+                    };
+                    let bare = Local::over(&system, &layout, &bases, &coords, &[]);
+                    assert_eq!(
+                        values(&laws::law(sig, variant, &bare, &none, true)),
+                        values(&whole)
+                    );
+                    for &b in &bases {
+                        let vars: Vec<usize> = layout.columns(b).collect();
+                        let over = Local::over(&system, &layout, &bases, &coords, &vars);
+                        let part = laws::law(sig, variant, &over, &none, true);
+                        assert_eq!(values(&part), values(&whole));
+                        let (dw, dp) = (duals(&whole), duals(&part));
+                        assert_eq!(dw.len(), dp.len());
+                        for (w, p) in dw.iter().zip(&dp) {
+                            assert_eq!(
+                                show(&restrict(p, &over.cols, &vars)),
+                                show(&restrict(w, &full.cols, &vars))
+                            );
+                            compared += 1;
+                        }
+                    }
+                }
+            }
+            assert!(compared > 50, "{compared}");
+        });
+    }
+
     /// `n` chords, each of its own circle, and a point on each chord and on another circle,
     /// all the circles concentric, no sketch: the point's construction needs a square root,
     /// modulo the prime one half of the time, and the chords' second end points are placed
