@@ -506,28 +506,20 @@ pub(crate) fn measure(
     Some(match metric {
         M::DistancePointPoint(a, b) => length(sqrt(&v::norm2(&v::sub(&l.point(a), &l.point(b))))),
         M::DistancePointLine { point, line } if !d3 => {
-            let x = l.point(point);
-            let [a, b, c0] = l.line2(line);
-            let p = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
-            length(abs(&p).over(&sqrt(&(&(&a * &a) + &(&b * &b)))))
+            let (p, n2) = point_line_2d(l, point, line);
+            length(abs(&p).over(&sqrt(&n2)))
         }
         M::DistancePointLine { point, line } => {
-            let x = l.point(point);
-            let (d, m) = l.line3(line);
-            let w = v::sub(&v::cross3(&x, &d), &m);
-            length(sqrt(&v::norm2(&w).over(&v::norm2(&d))))
+            let (w2, d2) = point_line_3d(l, point, line);
+            length(sqrt(&w2.over(&d2)))
         }
         M::DistancePointPlane { point, plane } => {
-            let (n, delta) = l.plane(plane);
-            length(abs(&(&v::dot(&n, &l.point(point)) + &delta)).over(&sqrt(&v::norm2(&n))))
+            let (s, n2) = point_plane(l, point, plane);
+            length(abs(&s).over(&sqrt(&n2)))
         }
         M::DistanceLineLine(p, q) if !d3 => {
-            let [a1, b1, c1] = l.line2(p);
-            let [a2, b2, c2] = l.line2(q);
-            let n1 = [a1, b1];
-            let k = v::dot(&n1, &[a2, b2]);
-            let num = &(&c1 * &k) - &(&c2 * &v::norm2(&n1));
-            length(abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1)))))
+            let (num, k, n2) = parallel_lines_2d(l, p, q);
+            length(abs(&num).over(&(&abs(&k) * &sqrt(&n2))))
         }
         M::DistanceLineLine(p, q) => {
             let (d1, m1) = l.line3(p);
@@ -542,11 +534,8 @@ pub(crate) fn measure(
             })
         }
         M::DistancePlanePlane(p, q) => {
-            let (n1, e1) = l.plane(p);
-            let (n2, e2) = l.plane(q);
-            let k = v::dot(&n1, &n2);
-            let num = &(&e1 * &k) - &(&e2 * &v::norm2(&n1));
-            length(abs(&num).over(&(&abs(&k) * &sqrt(&v::norm2(&n1)))))
+            let (num, k, n2) = parallel_planes(l, p, q);
+            length(abs(&num).over(&(&abs(&k) * &sqrt(&n2))))
         }
         M::AngleLineLine(p, q) if !d3 => {
             // From the direction of the first line to that of the second: the directions are
@@ -573,11 +562,8 @@ pub(crate) fn measure(
         M::DistanceY(a, b) => length(&l.point(b)[1] - &l.point(a)[1]),
         M::DistanceCircleCircle(p, q) => length(abs(&(&l.round(p).1 - &l.round(q).1))),
         M::LengthRatio(s, t) => {
-            let (p1, q1) = l.segment(s);
-            let (p2, q2) = l.segment(t);
-            let ratio =
-                sqrt(&v::norm2(&v::sub(&q1, &p1))).over(&sqrt(&v::norm2(&v::sub(&q2, &p2))));
-            (ratio, value)
+            let (u2, w2) = squared_lengths(l, s, t);
+            (sqrt(&u2).over(&sqrt(&w2)), value)
         }
     })
 }
@@ -626,40 +612,28 @@ pub(crate) fn cleared<F: Field>(
     let minus = |p: Dual<F>, q: Dual<F>| &p - &(&v2 * &q);
     match metric {
         M::DistancePointLine { point, line } if !d3 => {
-            let x = l.point(point);
-            let [a, b, c0] = l.line2(line);
-            let s = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
-            Some(minus(&s * &s, &(&a * &a) + &(&b * &b)))
+            let (s, n2) = point_line_2d(l, point, line);
+            Some(minus(&s * &s, n2))
         }
         M::DistancePointLine { point, line } => {
-            let (d, m) = l.line3(line);
-            let w = v::sub(&v::cross3(&l.point(point), &d), &m);
-            Some(minus(v::norm2(&w), v::norm2(&d)))
+            let (w2, d2) = point_line_3d(l, point, line);
+            Some(minus(w2, d2))
         }
         M::DistancePointPlane { point, plane } => {
-            let (n, delta) = l.plane(plane);
-            let s = &v::dot(&n, &l.point(point)) + &delta;
-            Some(minus(&s * &s, v::norm2(&n)))
+            let (s, n2) = point_plane(l, point, plane);
+            Some(minus(&s * &s, n2))
         }
         M::DistanceLineLine(p, q) if !d3 => {
-            let [a1, b1, c1] = l.line2(p);
-            let [a2, b2, c2] = l.line2(q);
-            let n1 = [a1, b1];
-            let k = v::dot(&n1, &[a2, b2]);
-            let num = &(&c1 * &k) - &(&c2 * &v::norm2(&n1));
-            Some(minus(&num * &num, &(&k * &k) * &v::norm2(&n1)))
+            let (num, k, n2) = parallel_lines_2d(l, p, q);
+            Some(minus(&num * &num, &(&k * &k) * &n2))
         }
         M::DistancePlanePlane(p, q) => {
-            let (n1, e1) = l.plane(p);
-            let (n2, e2) = l.plane(q);
-            let k = v::dot(&n1, &n2);
-            let num = &(&e1 * &k) - &(&e2 * &v::norm2(&n1));
-            Some(minus(&num * &num, &(&k * &k) * &v::norm2(&n1)))
+            let (num, k, n2) = parallel_planes(l, p, q);
+            Some(minus(&num * &num, &(&k * &k) * &n2))
         }
         M::LengthRatio(s, t) => {
-            let (p1, q1) = l.segment(s);
-            let (p2, q2) = l.segment(t);
-            Some(minus(v::norm2(&v::sub(&q1, &p1)), v::norm2(&v::sub(&q2, &p2))))
+            let (u2, w2) = squared_lengths(l, s, t);
+            Some(minus(u2, w2))
         }
         M::DistancePointPoint(..)
         | M::Radius(_)
@@ -671,6 +645,75 @@ pub(crate) fn cleared<F: Field>(
         | M::AngleLinePlane { .. }
         | M::DistanceCircleCircle(..) => None,
     }
+}
+
+// The quotient measures' parts, shared by [`measure`] and [`cleared`].
+
+/// The 2D point–line distance `|s| / √|n|²`: `s = n·x + c` and `|n|²`.
+fn point_line_2d<F: Field>(
+    l: &Local<'_, F>,
+    point: EntityIdx,
+    line: EntityIdx,
+) -> (Dual<F>, Dual<F>) {
+    let x = l.point(point);
+    let [a, b, c0] = l.line2(line);
+    let s = &(&(&a * &x[0]) + &(&b * &x[1])) + &c0;
+    (s, &(&a * &a) + &(&b * &b))
+}
+
+/// The 3D point–line distance `√(|x × d − m|² / |d|²)`: the two squared norms.
+fn point_line_3d<F: Field>(
+    l: &Local<'_, F>,
+    point: EntityIdx,
+    line: EntityIdx,
+) -> (Dual<F>, Dual<F>) {
+    let (d, m) = l.line3(line);
+    let w = v::sub(&v::cross3(&l.point(point), &d), &m);
+    (v::norm2(&w), v::norm2(&d))
+}
+
+/// The point–plane distance `|s| / √|n|²`: `s = n·x + δ` and `|n|²`.
+fn point_plane<F: Field>(
+    l: &Local<'_, F>,
+    point: EntityIdx,
+    plane: EntityIdx,
+) -> (Dual<F>, Dual<F>) {
+    let (n, delta) = l.plane(plane);
+    (&v::dot(&n, &l.point(point)) + &delta, v::norm2(&n))
+}
+
+/// The distance between parallel 2D lines `|num| / (|k| √|n₁|²)`: `num`, `k = n₁·n₂`, `|n₁|²`.
+fn parallel_lines_2d<F: Field>(
+    l: &Local<'_, F>,
+    p: EntityIdx,
+    q: EntityIdx,
+) -> (Dual<F>, Dual<F>, Dual<F>) {
+    let [a1, b1, c1] = l.line2(p);
+    let [a2, b2, c2] = l.line2(q);
+    let n1 = [a1, b1];
+    let k = v::dot(&n1, &[a2, b2]);
+    let n2 = v::norm2(&n1);
+    (&(&c1 * &k) - &(&c2 * &n2), k, n2)
+}
+
+/// The distance between parallel planes `|num| / (|k| √|n₁|²)`: `num`, `k = n₁·n₂`, `|n₁|²`.
+fn parallel_planes<F: Field>(
+    l: &Local<'_, F>,
+    p: EntityIdx,
+    q: EntityIdx,
+) -> (Dual<F>, Dual<F>, Dual<F>) {
+    let (n1, e1) = l.plane(p);
+    let (n2, e2) = l.plane(q);
+    let k = v::dot(&n1, &n2);
+    let n1_2 = v::norm2(&n1);
+    (&(&e1 * &k) - &(&e2 * &n1_2), k, n1_2)
+}
+
+/// A ratio of lengths `√|u|² / √|w|²`: the two squared lengths.
+fn squared_lengths<F: Field>(l: &Local<'_, F>, s: EntityIdx, t: EntityIdx) -> (Dual<F>, Dual<F>) {
+    let (p1, q1) = l.segment(s);
+    let (p2, q2) = l.segment(t);
+    (v::norm2(&v::sub(&q1, &p1)), v::norm2(&v::sub(&q2, &p2)))
 }
 
 /// The angle in degrees, in `[0°, 90°]`, between two undirected lines with directions `u`, `w`
